@@ -1,0 +1,30 @@
+#pragma once
+// Candidate sets C_j (paper Sec. IV): for each source point, the up-to-k nearest target points
+// within the radius, found once per run at the current estimate and then held fixed while EM
+// re-weights them. Stored flat (CSR layout): candidates of source j are
+// target_indices[offsets[j] .. offsets[j+1]).
+
+#include <Eigen/Geometry>
+#include <vector>
+
+#include "pda_registration/core/point_list.hpp"
+#include "pda_registration/core/target_index.hpp"
+
+namespace pda_registration {
+
+struct CandidateSets {
+  std::vector<size_t> offsets;         ///< size = source points + 1
+  std::vector<size_t> target_indices;  ///< all candidates, grouped by source point
+
+  size_t sourceCount() const { return offsets.empty() ? 0 : offsets.size() - 1; }
+  size_t candidateCount(size_t j) const { return offsets[j + 1] - offsets[j]; }
+  size_t sourcePointsWithCandidates() const;
+};
+
+/// Searches candidates for every source point transformed by T_target_source. `threads` > 1
+/// splits the source points among threads; the result is identical for any thread count.
+CandidateSets findCandidateSets(const TargetIndex& target, const PointList& source,
+                                const Eigen::Isometry3d& T_target_source, int k, double radius,
+                                int threads);
+
+}  // namespace pda_registration

@@ -1,0 +1,18 @@
+#pragma once
+// Covariance of the estimate: the inverse Hessian of the EM objective at the solution,
+// sigma^2 (sum_j W_j J_j^T J_j)^-1, with J_j the Jacobian of the moved source point with respect
+// to (dx, dy, dz, droll, dpitch, dyaw): a translation increment plus a rotation increment about
+// the target frame's axes, the convention of geometry_msgs/PoseWithCovariance.
+
+#include <Eigen/Geometry>
+
+#include "pda_registration/core/association_weights.hpp"
+
+namespace pda_registration {
+
+/// Returns false (and a zero matrix) when the Hessian is singular or there is nothing to use.
+bool computePoseCovariance(const WeightedCorrespondences& correspondences,
+                           const Eigen::Isometry3d& T_target_source, double sigma_squared,
+                           Eigen::Matrix<double, 6, 6>* covariance);
+
+}  // namespace pda_registration

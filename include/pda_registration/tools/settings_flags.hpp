@@ -1,0 +1,23 @@
+#pragma once
+// The registration flags every tool shares (--k, --radius, --nu, --runs, ...), parsed in one
+// place so pda_align, pda_benchmark and pda_bag_eval accept the same names and limits.
+
+#include <set>
+#include <string>
+
+#include "pda_registration/tools/command_line.hpp"
+#include "pda_registration/tools/method_runner.hpp"
+
+namespace pda_registration {
+
+/// Flag names (without "--") read by readSettingsFlags.
+std::set<std::string> settingsFlagNames();
+
+/// Help text for those flags, one per line, with defaults.
+std::string settingsFlagsHelp();
+
+/// Applies the flags present on the command line to *settings; false on a bad value
+/// (command_line->error() says which).
+bool readSettingsFlags(CommandLine* command_line, MethodSettings* settings);
+
+}  // namespace pda_registration

@@ -1,0 +1,34 @@
+# Shared by the entry points in scripts/: paths, the Debian-python PATH fix and the catkin build.
+# Source it; it defines REPO, WORKSPACE, DATA_DIR and the functions below.
+
+# Debian's ROS lives under /usr and its Python modules (catkin_pkg, rospy, rosbag) only load in
+# /usr/bin/python3; a pyenv or venv python3 earlier on PATH breaks catkin and roslaunch.
+export PATH="/usr/bin:/bin:/usr/sbin:/sbin:${PATH}"
+
+REPO="$(cd "$(dirname "${BASH_SOURCE[0]}")/../.." && pwd)"
+WORKSPACE="${PDA_WORKSPACE:-${REPO}/.build/ws}"
+DATA_DIR="${PDA_DATA_DIR:-$(cd "${REPO}/.." && pwd)/shared/data}"
+export PDA_DATA_DIR="${DATA_DIR}"
+JOBS="${PDA_JOBS:-$(nproc)}"
+
+log() { printf '\033[1m[%s]\033[0m %s\n' "$(basename "$0")" "$*"; }
+
+# Builds the package in a catkin workspace beside the sources (a symlink, so edits need no copy).
+build_package() {
+  mkdir -p "${WORKSPACE}/src"
+  ln -sfn "${REPO}" "${WORKSPACE}/src/pda_registration"
+  log "building in ${WORKSPACE} (${JOBS} jobs)"
+  catkin_make -C "${WORKSPACE}" -j"${JOBS}" \
+    -DCMAKE_BUILD_TYPE=Release \
+    -DPYTHON_EXECUTABLE=/usr/bin/python3 \
+    -DPDA_DATA_DIR="${DATA_DIR}" "$@"
+}
+
+# Makes roslaunch, rosrun and the built tools visible in this shell.
+source_workspace() {
+  # setup.bash reads unset variables; relax nounset while it runs.
+  set +u
+  # shellcheck disable=SC1091
+  source "${WORKSPACE}/devel/setup.bash"
+  set -u
+}

@@ -1,0 +1,40 @@
+#include "pda_registration/core/candidate_sets.hpp"
+
+#include <algorithm>
+
+namespace pda_registration {
+
+size_t CandidateSets::sourcePointsWithCandidates() const {
+  size_t count = 0;
+  for (size_t j = 0; j < sourceCount(); ++j) count += candidateCount(j) > 0 ? 1 : 0;
+  return count;
+}
+
+CandidateSets findCandidateSets(const TargetIndex& target, const PointList& source,
+                                const Eigen::Isometry3d& T_target_source, int k, double radius,
+                                int threads) {
+  const size_t n = source.size();
+  const size_t capacity = static_cast<size_t>(std::max(k, 0));
+  // Search into fixed-size slots first (parallel, no allocation per point), then compact.
+  std::vector<size_t> slots(n * capacity);
+  std::vector<double> squared_distances(n * capacity);
+  std::vector<size_t> found(n, 0);
+
+#pragma omp parallel for schedule(dynamic, 256) num_threads(std::max(threads, 1))
+  for (long long j = 0; j < static_cast<long long>(n); ++j) {
+    const Point query = T_target_source * source[j];
+    found[j] = target.nearestWithinRadius(query, k, radius, &slots[j * capacity],
+                                          &squared_distances[j * capacity]);
+  }
+
+  CandidateSets sets;
+  sets.offsets.resize(n + 1, 0);
+  for (size_t j = 0; j < n; ++j) sets.offsets[j + 1] = sets.offsets[j] + found[j];
+  sets.target_indices.resize(sets.offsets[n]);
+  for (size_t j = 0; j < n; ++j) {
+    std::copy_n(&slots[j * capacity], found[j], &sets.target_indices[sets.offsets[j]]);
+  }
+  return sets;
+}
+
+}  // namespace pda_registration

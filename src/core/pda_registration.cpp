@@ -1,0 +1,263 @@
+#include "pda_registration/core/pda_registration.hpp"
+
+#include <Eigen/SVD>
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <exception>
+#include <sstream>
+
+#include "pda_registration/core/association_weights.hpp"
+#include "pda_registration/core/candidate_sets.hpp"
+#include "pda_registration/core/ceres_solver.hpp"
+#include "pda_registration/core/closed_form_solver.hpp"
+#include "pda_registration/core/degeneracy.hpp"
+#include "pda_registration/core/point_filter.hpp"
+#include "pda_registration/core/pose_covariance.hpp"
+
+namespace pda_registration {
+namespace {
+
+struct Increment {
+  double translation;
+  double rotation;
+};
+
+Increment incrementBetween(const Eigen::Isometry3d& from, const Eigen::Isometry3d& to) {
+  const Eigen::AngleAxisd rotation(to.linear() * from.linear().transpose());
+  return {(to.translation() - from.translation()).norm(), std::abs(rotation.angle())};
+}
+
+bool isSmall(const Increment& increment, const RegistrationParameters& p) {
+  return increment.translation <= p.translation_epsilon && increment.rotation <= p.rotation_epsilon;
+}
+
+// Accepts a slightly non-orthonormal rotation (text files round it) and snaps it back; rejects
+// anything that is not close to a rigid transform.
+bool sanitiseInitialGuess(const Eigen::Isometry3d& initial, Eigen::Isometry3d* out) {
+  if (!initial.matrix().allFinite()) return false;
+  const Eigen::Matrix3d r = initial.linear();
+  if ((r.transpose() * r - Eigen::Matrix3d::Identity()).norm() > 1e-3 || r.determinant() <= 0.0) {
+    return false;
+  }
+  const Eigen::JacobiSVD<Eigen::Matrix3d> svd(r, Eigen::ComputeFullU | Eigen::ComputeFullV);
+  *out = Eigen::Isometry3d::Identity();
+  out->linear() = svd.matrixU() * svd.matrixV().transpose();
+  out->translation() = initial.translation();
+  return true;
+}
+
+bool runMStep(const WeightedCorrespondences& correspondences, const RegistrationParameters& p,
+              Eigen::Isometry3d* T) {
+  if (p.solver == MStepSolver::kCeres) {
+    return solveWithCeres(correspondences, p.ceres_max_iterations, p.threads, T);
+  }
+  return solveClosedForm(correspondences, T);
+}
+
+// Inlier fraction over all used source points, and the mean distance of inliers to their
+// nearest candidate, at the final estimate.
+void fillInlierStatistics(const PointList& target, const PointList& source,
+                          const CandidateSets& candidates, const Eigen::Isometry3d& T,
+                          double inlier_distance, RegistrationResult* result) {
+  size_t inliers = 0;
+  double distance_sum = 0.0;
+  for (size_t j = 0; j < candidates.sourceCount(); ++j) {
+    if (candidates.candidateCount(j) == 0) continue;
+    const Point x = T * source[j];
+    double best = std::numeric_limits<double>::infinity();
+    for (size_t c = candidates.offsets[j]; c < candidates.offsets[j + 1]; ++c) {
+      best = std::min(best, (target[candidates.target_indices[c]] - x).squaredNorm());
+    }
+    best = std::sqrt(best);
+    if (best < inlier_distance) {
+      ++inliers;
+      distance_sum += best;
+    }
+  }
+  result->inlier_fraction =
+      source.empty() ? 0.0 : static_cast<double>(inliers) / static_cast<double>(source.size());
+  result->mean_residual = inliers == 0 ? 0.0 : distance_sum / static_cast<double>(inliers);
+}
+
+}  // namespace
+
+PdaRegistration::PdaRegistration(const RegistrationParameters& parameters)
+    : parameters_(parameters) {}
+
+void PdaRegistration::setParameters(const RegistrationParameters& parameters) {
+  const bool reindex = parameters.target_voxel_size != parameters_.target_voxel_size;
+  parameters_ = parameters;
+  if (reindex && hasTarget()) rebuildIndex();
+}
+
+bool PdaRegistration::setTarget(PointList target) {
+  target_index_.reset();
+  target_dropped_ = removeNonFinitePoints(&target);
+  raw_target_ = std::move(target);
+  rebuildIndex();
+  return hasTarget();
+}
+
+void PdaRegistration::rebuildIndex() {
+  // Without downsampling the index holds the raw points itself, so only a downsampled index
+  // needs the raw copy kept beside it.
+  if (raw_target_.empty() && target_index_) raw_target_ = target_index_->points();
+  target_index_.reset();
+  const double voxel = parameters_.target_voxel_size;
+  try {
+    if (voxel > 0.0 && std::isfinite(voxel)) {
+      target_index_ = std::make_shared<const TargetIndex>(voxelDownsample(raw_target_, voxel));
+    } else {
+      target_index_ = std::make_shared<const TargetIndex>(std::move(raw_target_));
+      raw_target_.clear();
+    }
+    indexed_voxel_size_ = voxel;
+  } catch (const std::exception&) {
+    target_index_.reset();  // out of memory: align() reports "no target"
+  }
+}
+
+RegistrationResult PdaRegistration::align(const PointList& source,
+                                          const Eigen::Isometry3d& T_target_source_initial) const {
+  const auto start = std::chrono::steady_clock::now();
+  RegistrationResult result;
+  try {
+    result = alignUnchecked(source, T_target_source_initial);
+  } catch (const std::exception& error) {
+    result = RegistrationResult();
+    result.T_target_source = T_target_source_initial;
+    result.reason = std::string("internal error: ") + error.what();
+  } catch (...) {
+    result = RegistrationResult();
+    result.T_target_source = T_target_source_initial;
+    result.reason = "internal error: unknown exception";
+  }
+  result.time_ms =
+      std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+  return result;
+}
+
+RegistrationResult PdaRegistration::alignUnchecked(
+    const PointList& source_input, const Eigen::Isometry3d& T_target_source_initial) const {
+  const RegistrationParameters& p = parameters_;
+  RegistrationResult result;
+  result.T_target_source = T_target_source_initial;
+
+  const std::string parameter_error = validateParameters(p);
+  if (!parameter_error.empty()) {
+    result.reason = "invalid parameters: " + parameter_error;
+    return result;
+  }
+  Eigen::Isometry3d T;
+  if (!sanitiseInitialGuess(T_target_source_initial, &T)) {
+    result.reason = "initial transform is not a finite rigid transform";
+    return result;
+  }
+  const std::shared_ptr<const TargetIndex> index = target_index_;
+  result.target_points_dropped = target_dropped_;
+  if (!index || index->size() == 0) {
+    result.reason = "target cloud is empty (no finite points)";
+    return result;
+  }
+  result.target_points_used = index->size();
+  const PointList& target = index->points();
+
+  PointList source = source_input;
+  result.source_points_dropped = removeNonFinitePoints(&source);
+  source = voxelDownsample(source, p.source_voxel_size);
+  result.source_points_used = source.size();
+  if (source.size() < static_cast<size_t>(p.min_correspondences)) {
+    std::ostringstream reason;
+    reason << "source cloud has " << source.size() << " finite points (" << result.source_points_dropped
+           << " non-finite dropped); at least " << p.min_correspondences << " are needed";
+    result.reason = reason.str();
+    return result;
+  }
+
+  const bool estimate_sigma = p.sigma_mode == SigmaMode::kEstimated;
+  // A floor keeps the t-weights defined when the clouds match exactly (sigma -> 0).
+  const double sigma_squared_floor = std::pow(1e-6 * p.radius, 2);
+  double sigma_squared = estimate_sigma ? 0.0 : p.fixed_sigma * p.fixed_sigma;
+  CandidateSets candidates;
+  Increment last_run_step{0.0, 0.0};
+  bool em_settled = false;  // did the last run's EM loop stop on the epsilons?
+
+  for (int run = 1; run <= p.max_runs; ++run) {
+    candidates = findCandidateSets(*index, source, T, p.k, p.radius, p.threads);
+    result.runs = run;
+    result.source_points_with_candidates = candidates.sourcePointsWithCandidates();
+    if (result.source_points_with_candidates < static_cast<size_t>(p.min_correspondences)) {
+      std::ostringstream reason;
+      reason << "no overlap: only " << result.source_points_with_candidates
+             << " source points have a target point within radius " << p.radius << " (need "
+             << p.min_correspondences << ")";
+      result.reason = reason.str();
+      result.sigma = std::sqrt(sigma_squared);
+      return result;
+    }
+    if (estimate_sigma && sigma_squared == 0.0) {
+      sigma_squared = std::max(initialSigmaSquared(target, source, candidates, T),
+                               sigma_squared_floor);
+    }
+
+    const Eigen::Isometry3d T_run_start = T;
+    em_settled = false;
+    for (int iteration = 0; iteration < p.max_em_iterations; ++iteration) {
+      const WeightedCorrespondences correspondences = computeWeightedCorrespondences(
+          target, source, candidates, T, p.nu, sigma_squared, p.threads);
+      Eigen::Isometry3d T_next = T;
+      if (!runMStep(correspondences, p, &T_next)) {
+        result.reason = "M-step failed: fewer than 3 weighted correspondences";
+        return result;
+      }
+      if (estimate_sigma) {
+        sigma_squared = std::max(estimateSigmaSquared(correspondences, T_next), sigma_squared_floor);
+      }
+      const Increment step = incrementBetween(T, T_next);
+      T = T_next;
+      ++result.em_iterations;
+      if (isSmall(step, p)) {
+        em_settled = true;
+        break;
+      }
+    }
+    last_run_step = incrementBetween(T_run_start, T);
+    if (isSmall(last_run_step, p)) {
+      result.converged = true;
+      break;
+    }
+  }
+
+  // With max_runs = 1 (the paper's single-run mode) convergence means EM settled in that run.
+  if (!result.converged && p.max_runs == 1) result.converged = em_settled;
+
+  result.T_target_source = T;
+  result.sigma = std::sqrt(sigma_squared);
+  const WeightedCorrespondences final_correspondences = computeWeightedCorrespondences(
+      target, source, candidates, T, p.nu, sigma_squared, p.threads);
+  computePoseCovariance(final_correspondences, T, sigma_squared, &result.covariance);
+  fillInlierStatistics(target, source, candidates, T, p.inlier_sigmas * result.sigma, &result);
+  result.degeneracy_ratio = constraintEigenvalueRatio(target, source, candidates, T);
+
+  if (!result.converged) {
+    std::ostringstream reason;
+    if (p.max_runs == 1) {
+      reason << "EM did not settle in " << p.max_em_iterations << " iterations";
+    } else {
+      reason << "not converged after " << p.max_runs << " runs (last run moved "
+             << last_run_step.translation << " and rotated " << last_run_step.rotation << " rad)";
+    }
+    result.reason = reason.str();
+  } else if (result.degeneracy_ratio < p.degeneracy_threshold) {
+    std::ostringstream reason;
+    reason << "degenerate geometry: the overlap constrains some direction " << std::fixed
+           << "weakly (eigenvalue ratio " << result.degeneracy_ratio << " < "
+           << p.degeneracy_threshold << ", e.g. a single plane or a corridor)";
+    result.converged = false;
+    result.reason = reason.str();
+  }
+  return result;
+}
+
+}  // namespace pda_registration

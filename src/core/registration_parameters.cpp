@@ -1,0 +1,60 @@
+#include "pda_registration/core/registration_parameters.hpp"
+
+#include <cmath>
+#include <sstream>
+
+namespace pda_registration {
+namespace {
+bool finiteNonNegative(double v) { return std::isfinite(v) && v >= 0.0; }
+bool finitePositive(double v) { return std::isfinite(v) && v > 0.0; }
+}  // namespace
+
+std::string validateParameters(const RegistrationParameters& p) {
+  std::ostringstream error;
+  if (p.k < 1 || p.k > 1000) error << "k must be in [1, 1000] (got " << p.k << ")";
+  else if (!finitePositive(p.radius)) error << "radius must be > 0 and finite (got " << p.radius << ")";
+  else if (std::isnan(p.nu) || !(p.nu > 0.0)) error << "nu must be > 0 or inf (got " << p.nu << ")";
+  else if (p.sigma_mode == SigmaMode::kFixed && !finitePositive(p.fixed_sigma))
+    error << "fixed_sigma must be > 0 and finite (got " << p.fixed_sigma << ")";
+  else if (p.max_em_iterations < 1 || p.max_em_iterations > 1000)
+    error << "max_em_iterations must be in [1, 1000] (got " << p.max_em_iterations << ")";
+  else if (p.max_runs < 1 || p.max_runs > 1000)
+    error << "max_runs must be in [1, 1000] (got " << p.max_runs << ")";
+  else if (!finiteNonNegative(p.translation_epsilon) || !finiteNonNegative(p.rotation_epsilon))
+    error << "translation_epsilon and rotation_epsilon must be >= 0 and finite";
+  else if (p.ceres_max_iterations < 1 || p.ceres_max_iterations > 1000)
+    error << "ceres_max_iterations must be in [1, 1000] (got " << p.ceres_max_iterations << ")";
+  else if (!finiteNonNegative(p.source_voxel_size) || !finiteNonNegative(p.target_voxel_size))
+    error << "voxel sizes must be >= 0 and finite (0 disables downsampling)";
+  else if (p.min_correspondences < 3)
+    error << "min_correspondences must be >= 3 (got " << p.min_correspondences << ")";
+  else if (!finitePositive(p.inlier_sigmas))
+    error << "inlier_sigmas must be > 0 (got " << p.inlier_sigmas << ")";
+  else if (!(p.degeneracy_threshold >= 0.0 && p.degeneracy_threshold < 1.0))
+    error << "degeneracy_threshold must be in [0, 1) (got " << p.degeneracy_threshold << ")";
+  else if (p.threads < 1 || p.threads > 256)
+    error << "threads must be in [1, 256] (got " << p.threads << ")";
+  return error.str();
+}
+
+const char* toString(MStepSolver solver) {
+  return solver == MStepSolver::kCeres ? "ceres" : "closed_form";
+}
+
+const char* toString(SigmaMode mode) { return mode == SigmaMode::kFixed ? "fixed" : "estimated"; }
+
+bool parseSolver(const std::string& text, MStepSolver* solver) {
+  if (text == "closed_form") *solver = MStepSolver::kClosedForm;
+  else if (text == "ceres") *solver = MStepSolver::kCeres;
+  else return false;
+  return true;
+}
+
+bool parseSigmaMode(const std::string& text, SigmaMode* mode) {
+  if (text == "estimated") *mode = SigmaMode::kEstimated;
+  else if (text == "fixed") *mode = SigmaMode::kFixed;
+  else return false;
+  return true;
+}
+
+}  // namespace pda_registration

@@ -1,0 +1,78 @@
+#include "pda_registration/tools/settings_flags.hpp"
+
+#include <limits>
+#include <sstream>
+
+namespace pda_registration {
+
+std::set<std::string> settingsFlagNames() {
+  return {"k",          "radius",        "nu",           "runs",         "em-iterations",
+          "solver",     "sigma-mode",    "fixed-sigma",  "threads",      "source-voxel",
+          "target-voxel", "translation-epsilon", "rotation-epsilon", "min-correspondences",
+          "max-iterations", "ndt-resolution", "ndt-step-size"};
+}
+
+std::string settingsFlagsHelp() {
+  const RegistrationParameters p;
+  const BaselineParameters b;
+  std::ostringstream help;
+  help << "  --k N                   candidates per source point (" << p.k << ")\n"
+       << "  --radius R              candidate radius [m]; ICP/GICP max correspondence distance ("
+       << p.radius << ")\n"
+       << "  --nu V                  Student-t degrees of freedom, 'inf' = Gaussian (" << p.nu
+       << ")\n"
+       << "  --runs N                max candidate-set recomputations, 1 = single run ("
+       << p.max_runs << ")\n"
+       << "  --em-iterations N       max EM iterations per run (" << p.max_em_iterations << ")\n"
+       << "  --solver S              closed_form | ceres (" << toString(p.solver) << ")\n"
+       << "  --sigma-mode M          estimated | fixed (" << toString(p.sigma_mode) << ")\n"
+       << "  --fixed-sigma S         sigma in fixed mode [m] (" << p.fixed_sigma << ")\n"
+       << "  --threads N             worker threads (" << p.threads << ")\n"
+       << "  --source-voxel V        source voxel size [m], 0 = off (" << p.source_voxel_size
+       << ")\n"
+       << "  --target-voxel V        target voxel size [m], 0 = off (" << p.target_voxel_size
+       << ")\n"
+       << "  --translation-epsilon E convergence threshold [m] (" << p.translation_epsilon << ")\n"
+       << "  --rotation-epsilon E    convergence threshold [rad] (" << p.rotation_epsilon << ")\n"
+       << "  --min-correspondences N fewer source points with candidates = failure ("
+       << p.min_correspondences << ")\n"
+       << "  --max-iterations N      ICP/GICP/NDT iterations (" << b.max_iterations << ")\n"
+       << "  --ndt-resolution R      NDT cell size [m] (" << b.ndt_resolution << ")\n"
+       << "  --ndt-step-size S       NDT step size [m] (" << b.ndt_step_size << ")\n";
+  return help.str();
+}
+
+bool readSettingsFlags(CommandLine* cl, MethodSettings* settings) {
+  RegistrationParameters& p = settings->pda;
+  BaselineParameters& b = settings->baseline;
+  const double inf = std::numeric_limits<double>::infinity();
+  if (!cl->integer("k", &p.k, 1, 1000) || !cl->number("radius", &p.radius, 1e-9, 1e9) ||
+      !cl->number("nu", &p.nu, 1e-6, inf) || !cl->integer("runs", &p.max_runs, 1, 1000) ||
+      !cl->integer("em-iterations", &p.max_em_iterations, 1, 1000) ||
+      !cl->number("fixed-sigma", &p.fixed_sigma, 1e-12, 1e9) ||
+      !cl->integer("threads", &p.threads, 1, 256) ||
+      !cl->number("source-voxel", &p.source_voxel_size, 0.0, 1e6) ||
+      !cl->number("target-voxel", &p.target_voxel_size, 0.0, 1e6) ||
+      !cl->number("translation-epsilon", &p.translation_epsilon, 0.0, 1e6) ||
+      !cl->number("rotation-epsilon", &p.rotation_epsilon, 0.0, 3.2) ||
+      !cl->integer("min-correspondences", &p.min_correspondences, 3, 100000000) ||
+      !cl->integer("max-iterations", &b.max_iterations, 1, 100000) ||
+      !cl->number("ndt-resolution", &b.ndt_resolution, 1e-6, 1e6) ||
+      !cl->number("ndt-step-size", &b.ndt_step_size, 1e-9, 1e6)) {
+    return false;
+  }
+  if (cl->has("solver") && !parseSolver(cl->text("solver"), &p.solver)) {
+    return cl->setError("--solver: '" + cl->text("solver") + "' is not closed_form or ceres");
+  }
+  if (cl->has("sigma-mode") && !parseSigmaMode(cl->text("sigma-mode"), &p.sigma_mode)) {
+    return cl->setError("--sigma-mode: '" + cl->text("sigma-mode") +
+                        "' is not estimated or fixed");
+  }
+  // The baselines share the inputs' limits: same radius, same voxel sizes.
+  b.max_correspondence_distance = p.radius;
+  b.source_voxel_size = p.source_voxel_size;
+  b.target_voxel_size = p.target_voxel_size;
+  return true;
+}
+
+}  // namespace pda_registration
