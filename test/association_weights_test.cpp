@@ -1,10 +1,10 @@
 // E-step weights against values worked out by hand from the paper's eqs. 19-21.
+#include "pda_registration/core/association_weights.hpp"
+
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <limits>
-
-#include "pda_registration/core/association_weights.hpp"
 
 using pda_registration::computeCandidateWeights;
 

@@ -4,27 +4,47 @@
 #include <cmath>
 #include <limits>
 
+#include "pda_registration/core/noise_model.hpp"
+
 namespace pda_registration {
 namespace {
+
 constexpr double kDimension = 3.0;
+
+// base^exponent for base in (0, 1]: repeated multiplication when 2*exponent is a small integer
+// (nu = 1, 3, 5, ... and nu = 2, 4, ... give (nu + 3) / 2 of that form), std::pow otherwise.
+// The E-step spends most of its time here, and integer nu is the common case.
+double powerOf(double base, double exponent) {
+  const double twice = 2.0 * exponent;
+  if (twice > 0.0 && twice <= 64.0 && twice == std::floor(twice)) {
+    const int whole = static_cast<int>(exponent);
+    double result = (twice - 2.0 * whole) > 0.5 ? std::sqrt(base) : 1.0;
+    double square = base;
+    for (int bits = whole; bits > 0; bits >>= 1) {
+      if (bits & 1) result *= square;
+      square *= square;
+    }
+    return result;
+  }
+  return std::pow(base, exponent);
 }
+
+}  // namespace
 
 void computeCandidateWeights(const double* squared_residuals, size_t count, double nu,
                              double sigma_squared, double* posterior, double* weight) {
   if (count == 0) return;
   const bool gaussian = std::isinf(nu);
-  // Log-densities first, normalised with the max subtracted, so tiny sigmas cannot underflow
-  // every candidate to zero.
-  double max_log = -std::numeric_limits<double>::infinity();
-  for (size_t i = 0; i < count; ++i) {
-    const double mahalanobis = squared_residuals[i] / sigma_squared;
-    posterior[i] = gaussian ? -0.5 * mahalanobis
-                            : -0.5 * (nu + kDimension) * std::log1p(mahalanobis / nu);  // eq. 20
-    max_log = std::max(max_log, posterior[i]);
-  }
+  // Densities are taken relative to the best candidate's, so tiny sigmas cannot underflow every
+  // candidate to zero: for the t (eq. 20) p_i / p_best = ((nu + m_best) / (nu + m_i))^((nu+d)/2).
+  const double best =
+      *std::min_element(squared_residuals, squared_residuals + count) / sigma_squared;
+  const double exponent = 0.5 * (nu + kDimension);
   double total = 0.0;
   for (size_t i = 0; i < count; ++i) {
-    posterior[i] = std::exp(posterior[i] - max_log);
+    const double mahalanobis = squared_residuals[i] / sigma_squared;
+    posterior[i] = gaussian ? std::exp(-0.5 * (mahalanobis - best))                 // eq. 19
+                            : powerOf((nu + best) / (nu + mahalanobis), exponent);  // eq. 20
     total += posterior[i];
   }
   for (size_t i = 0; i < count; ++i) {
@@ -32,16 +52,14 @@ void computeCandidateWeights(const double* squared_residuals, size_t count, doub
     const double mahalanobis = squared_residuals[i] / sigma_squared;
     const double expected_precision =
         gaussian ? 1.0 : (nu + kDimension) / (nu + mahalanobis);  // eq. 16
-    weight[i] = posterior[i] * expected_precision;                 // eqs. 15, 21
+    weight[i] = posterior[i] * expected_precision;                // eqs. 15, 21
   }
 }
 
-WeightedCorrespondences computeWeightedCorrespondences(const PointList& target,
-                                                       const PointList& source,
-                                                       const CandidateSets& candidates,
-                                                       const Eigen::Isometry3d& T_target_source,
-                                                       double nu, double sigma_squared,
-                                                       int threads) {
+WeightedCorrespondences computeWeightedCorrespondences(
+    const PointList& source, const CandidateSets& candidates, const PointList& normals,
+    double inverse_kappa, const Eigen::Isometry3d& T_target_source, double nu, double sigma_squared,
+    int threads) {
   const size_t n = candidates.sourceCount();
   // Per-source results are written to fixed slots in parallel and compacted serially, so the
   // sums (and therefore the estimate) are the same for any thread count.
@@ -54,15 +72,16 @@ WeightedCorrespondences computeWeightedCorrespondences(const PointList& target,
     std::vector<double> residuals, posterior, rho;
 #pragma omp for schedule(dynamic, 256)
     for (long long j = 0; j < static_cast<long long>(n); ++j) {
-      const size_t begin = candidates.offsets[j];
       const size_t count = candidates.candidateCount(j);
       if (count == 0) continue;
+      const Point* y = &candidates.points[candidates.offsets[j]];
       residuals.resize(count);
       posterior.resize(count);
       rho.resize(count);
       const Point x = T_target_source * source[j];
+      const Point normal = normals.empty() ? Point::Zero() : normals[j];
       for (size_t i = 0; i < count; ++i) {
-        residuals[i] = (target[candidates.target_indices[begin + i]] - x).squaredNorm();
+        residuals[i] = shapedSquaredNorm(y[i] - x, normal, inverse_kappa);
       }
       computeCandidateWeights(residuals.data(), count, nu, sigma_squared, posterior.data(),
                               rho.data());
@@ -70,13 +89,13 @@ WeightedCorrespondences computeWeightedCorrespondences(const PointList& target,
       Point mean = Point::Zero();
       for (size_t i = 0; i < count; ++i) {
         w += rho[i];
-        mean += rho[i] * target[candidates.target_indices[begin + i]];
+        mean += rho[i] * y[i];
       }
       if (!(w > 0.0)) continue;
       mean /= w;
       double spread = 0.0;
       for (size_t i = 0; i < count; ++i) {
-        spread += rho[i] * (target[candidates.target_indices[begin + i]] - mean).squaredNorm();
+        spread += rho[i] * shapedSquaredNorm(y[i] - mean, normal, inverse_kappa);
       }
       means[j] = mean;
       weights[j] = w;
@@ -85,12 +104,21 @@ WeightedCorrespondences computeWeightedCorrespondences(const PointList& target,
   }
 
   WeightedCorrespondences out;
+  out.inverse_kappa = inverse_kappa;
+  const size_t used = static_cast<size_t>(
+      std::count_if(weights.begin(), weights.end(), [](double w) { return w > 0.0; }));
+  out.source_index.reserve(used);
+  out.source.reserve(used);
+  out.target_mean.reserve(used);
+  out.weight.reserve(used);
+  out.normal.reserve(used);
   for (size_t j = 0; j < n; ++j) {
     if (!(weights[j] > 0.0)) continue;
     out.source_index.push_back(j);
     out.source.push_back(source[j]);
     out.target_mean.push_back(means[j]);
     out.weight.push_back(weights[j]);
+    out.normal.push_back(normals.empty() ? Point::Zero() : normals[j]);
     out.spread += spreads[j];
   }
   return out;
@@ -101,8 +129,9 @@ double weightedObjective(const WeightedCorrespondences& correspondences,
   double total = correspondences.spread;
   for (size_t i = 0; i < correspondences.size(); ++i) {
     total += correspondences.weight[i] *
-             (correspondences.target_mean[i] - T_target_source * correspondences.source[i])
-                 .squaredNorm();
+             shapedSquaredNorm(
+                 correspondences.target_mean[i] - T_target_source * correspondences.source[i],
+                 correspondences.normal[i], correspondences.inverse_kappa);
   }
   return total;
 }
@@ -114,15 +143,14 @@ double estimateSigmaSquared(const WeightedCorrespondences& correspondences,
          (kDimension * static_cast<double>(correspondences.size()));
 }
 
-double initialSigmaSquared(const PointList& target, const PointList& source,
-                           const CandidateSets& candidates,
+double initialSigmaSquared(const PointList& source, const CandidateSets& candidates,
                            const Eigen::Isometry3d& T_target_source) {
   double total = 0.0;
   size_t pairs = 0;
   for (size_t j = 0; j < candidates.sourceCount(); ++j) {
     const Point x = T_target_source * source[j];
     for (size_t c = candidates.offsets[j]; c < candidates.offsets[j + 1]; ++c) {
-      total += (target[candidates.target_indices[c]] - x).squaredNorm();
+      total += (candidates.points[c] - x).squaredNorm();
       ++pairs;
     }
   }

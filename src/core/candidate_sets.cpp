@@ -31,8 +31,13 @@ CandidateSets findCandidateSets(const TargetIndex& target, const PointList& sour
   sets.offsets.resize(n + 1, 0);
   for (size_t j = 0; j < n; ++j) sets.offsets[j + 1] = sets.offsets[j] + found[j];
   sets.target_indices.resize(sets.offsets[n]);
+  sets.points.resize(sets.offsets[n]);
+  const PointList& target_points = target.points();
   for (size_t j = 0; j < n; ++j) {
     std::copy_n(&slots[j * capacity], found[j], &sets.target_indices[sets.offsets[j]]);
+    for (size_t c = sets.offsets[j]; c < sets.offsets[j + 1]; ++c) {
+      sets.points[c] = target_points[sets.target_indices[c]];
+    }
   }
   return sets;
 }

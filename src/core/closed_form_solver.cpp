@@ -26,7 +26,7 @@ bool solveClosedForm(const WeightedCorrespondences& correspondences,
                         (correspondences.source[i] - source_centroid).transpose();
   }
   const Eigen::JacobiSVD<Eigen::Matrix3d> svd(cross_covariance,
-                                               Eigen::ComputeFullU | Eigen::ComputeFullV);
+                                              Eigen::ComputeFullU | Eigen::ComputeFullV);
   // Flip the weakest axis if needed so the result is a rotation, not a reflection.
   Eigen::Matrix3d sign = Eigen::Matrix3d::Identity();
   if ((svd.matrixU() * svd.matrixV().transpose()).determinant() < 0.0) sign(2, 2) = -1.0;

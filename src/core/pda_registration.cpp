@@ -5,6 +5,7 @@
 #include <chrono>
 #include <cmath>
 #include <exception>
+#include <limits>
 #include <sstream>
 
 #include "pda_registration/core/association_weights.hpp"
@@ -12,6 +13,7 @@
 #include "pda_registration/core/ceres_solver.hpp"
 #include "pda_registration/core/closed_form_solver.hpp"
 #include "pda_registration/core/degeneracy.hpp"
+#include "pda_registration/core/gauss_newton_solver.hpp"
 #include "pda_registration/core/point_filter.hpp"
 #include "pda_registration/core/pose_covariance.hpp"
 
@@ -49,17 +51,35 @@ bool sanitiseInitialGuess(const Eigen::Isometry3d& initial, Eigen::Isometry3d* o
 
 bool runMStep(const WeightedCorrespondences& correspondences, const RegistrationParameters& p,
               Eigen::Isometry3d* T) {
-  if (p.solver == MStepSolver::kCeres) {
-    return solveWithCeres(correspondences, p.ceres_max_iterations, p.threads, T);
+  switch (p.solver) {
+    case MStepSolver::kClosedForm:
+      return solveClosedForm(correspondences, T);
+    case MStepSolver::kCeres:
+      return solveWithCeres(correspondences, p.solver_max_iterations, p.threads, T);
+    case MStepSolver::kGaussNewton:
+      break;
   }
-  return solveClosedForm(correspondences, T);
+  // The EM loop checks convergence itself; inner steps only need to be a little finer.
+  return solveGaussNewton(correspondences, p.solver_max_iterations, 0.1 * p.translation_epsilon,
+                          0.1 * p.rotation_epsilon, T);
+}
+
+// The target surface normal at every moved source point (zero where unknown).
+PointList lookupNormals(const SurfaceNormalMap& map, const PointList& source,
+                        const Eigen::Isometry3d& T, int threads) {
+  PointList normals(source.size());
+#pragma omp parallel for schedule(static) num_threads(std::max(threads, 1))
+  for (long long j = 0; j < static_cast<long long>(source.size()); ++j) {
+    normals[j] = map.normalAt(T * source[j]);
+  }
+  return normals;
 }
 
 // Inlier fraction over all used source points, and the mean distance of inliers to their
 // nearest candidate, at the final estimate.
-void fillInlierStatistics(const PointList& target, const PointList& source,
-                          const CandidateSets& candidates, const Eigen::Isometry3d& T,
-                          double inlier_distance, RegistrationResult* result) {
+void fillInlierStatistics(const PointList& source, const CandidateSets& candidates,
+                          const Eigen::Isometry3d& T, double inlier_distance,
+                          RegistrationResult* result) {
   size_t inliers = 0;
   double distance_sum = 0.0;
   for (size_t j = 0; j < candidates.sourceCount(); ++j) {
@@ -67,7 +87,7 @@ void fillInlierStatistics(const PointList& target, const PointList& source,
     const Point x = T * source[j];
     double best = std::numeric_limits<double>::infinity();
     for (size_t c = candidates.offsets[j]; c < candidates.offsets[j + 1]; ++c) {
-      best = std::min(best, (target[candidates.target_indices[c]] - x).squaredNorm());
+      best = std::min(best, (candidates.points[c] - x).squaredNorm());
     }
     best = std::sqrt(best);
     if (best < inlier_distance) {
@@ -87,8 +107,13 @@ PdaRegistration::PdaRegistration(const RegistrationParameters& parameters)
 
 void PdaRegistration::setParameters(const RegistrationParameters& parameters) {
   const bool reindex = parameters.target_voxel_size != parameters_.target_voxel_size;
+  const bool renormal = parameters.normal_voxel_size != parameters_.normal_voxel_size;
   parameters_ = parameters;
-  if (reindex && hasTarget()) rebuildIndex();
+  if (reindex && hasTarget()) {
+    rebuildIndex();
+  } else if (renormal && hasTarget()) {
+    rebuildNormals();
+  }
 }
 
 bool PdaRegistration::setTarget(PointList target) {
@@ -104,6 +129,7 @@ void PdaRegistration::rebuildIndex() {
   // needs the raw copy kept beside it.
   if (raw_target_.empty() && target_index_) raw_target_ = target_index_->points();
   target_index_.reset();
+  normal_map_.reset();
   const double voxel = parameters_.target_voxel_size;
   try {
     if (voxel > 0.0 && std::isfinite(voxel)) {
@@ -112,9 +138,19 @@ void PdaRegistration::rebuildIndex() {
       target_index_ = std::make_shared<const TargetIndex>(std::move(raw_target_));
       raw_target_.clear();
     }
-    indexed_voxel_size_ = voxel;
   } catch (const std::exception&) {
     target_index_.reset();  // out of memory: align() reports "no target"
+    return;
+  }
+  rebuildNormals();
+}
+
+void PdaRegistration::rebuildNormals() {
+  try {
+    normal_map_ = std::make_shared<const SurfaceNormalMap>(target_index_->points(),
+                                                           parameters_.normal_voxel_size);
+  } catch (const std::exception&) {
+    normal_map_ = std::make_shared<const SurfaceNormalMap>();  // no normals: isotropic fallback
   }
 }
 
@@ -154,14 +190,16 @@ RegistrationResult PdaRegistration::alignUnchecked(
     result.reason = "initial transform is not a finite rigid transform";
     return result;
   }
+  // Local copies of the shared pointers: a concurrent setTarget() cannot pull them away.
   const std::shared_ptr<const TargetIndex> index = target_index_;
+  const std::shared_ptr<const SurfaceNormalMap> normal_map =
+      normal_map_ ? normal_map_ : std::make_shared<const SurfaceNormalMap>();
   result.target_points_dropped = target_dropped_;
   if (!index || index->size() == 0) {
     result.reason = "target cloud is empty (no finite points)";
     return result;
   }
   result.target_points_used = index->size();
-  const PointList& target = index->points();
 
   PointList source = source_input;
   result.source_points_dropped = removeNonFinitePoints(&source);
@@ -169,17 +207,21 @@ RegistrationResult PdaRegistration::alignUnchecked(
   result.source_points_used = source.size();
   if (source.size() < static_cast<size_t>(p.min_correspondences)) {
     std::ostringstream reason;
-    reason << "source cloud has " << source.size() << " finite points (" << result.source_points_dropped
-           << " non-finite dropped); at least " << p.min_correspondences << " are needed";
+    reason << "source cloud has " << source.size() << " finite points ("
+           << result.source_points_dropped << " non-finite dropped); at least "
+           << p.min_correspondences << " are needed";
     result.reason = reason.str();
     return result;
   }
 
   const bool estimate_sigma = p.sigma_mode == SigmaMode::kEstimated;
+  const bool surface_model = p.surface_anisotropy > 1.0;
+  const double inverse_kappa = 1.0 / p.surface_anisotropy;
   // A floor keeps the t-weights defined when the clouds match exactly (sigma -> 0).
   const double sigma_squared_floor = std::pow(1e-6 * p.radius, 2);
   double sigma_squared = estimate_sigma ? 0.0 : p.fixed_sigma * p.fixed_sigma;
   CandidateSets candidates;
+  PointList normals;
   Increment last_run_step{0.0, 0.0};
   bool em_settled = false;  // did the last run's EM loop stop on the epsilons?
 
@@ -196,23 +238,24 @@ RegistrationResult PdaRegistration::alignUnchecked(
       result.sigma = std::sqrt(sigma_squared);
       return result;
     }
+    if (surface_model) normals = lookupNormals(*normal_map, source, T, p.threads);
     if (estimate_sigma && sigma_squared == 0.0) {
-      sigma_squared = std::max(initialSigmaSquared(target, source, candidates, T),
-                               sigma_squared_floor);
+      sigma_squared = std::max(initialSigmaSquared(source, candidates, T), sigma_squared_floor);
     }
 
     const Eigen::Isometry3d T_run_start = T;
     em_settled = false;
     for (int iteration = 0; iteration < p.max_em_iterations; ++iteration) {
       const WeightedCorrespondences correspondences = computeWeightedCorrespondences(
-          target, source, candidates, T, p.nu, sigma_squared, p.threads);
+          source, candidates, normals, inverse_kappa, T, p.nu, sigma_squared, p.threads);
       Eigen::Isometry3d T_next = T;
       if (!runMStep(correspondences, p, &T_next)) {
-        result.reason = "M-step failed: fewer than 3 weighted correspondences";
+        result.reason = "M-step failed: the weighted correspondences do not constrain the pose";
         return result;
       }
       if (estimate_sigma) {
-        sigma_squared = std::max(estimateSigmaSquared(correspondences, T_next), sigma_squared_floor);
+        sigma_squared =
+            std::max(estimateSigmaSquared(correspondences, T_next), sigma_squared_floor);
       }
       const Increment step = incrementBetween(T, T_next);
       T = T_next;
@@ -234,11 +277,15 @@ RegistrationResult PdaRegistration::alignUnchecked(
 
   result.T_target_source = T;
   result.sigma = std::sqrt(sigma_squared);
+  const PointList final_normals = lookupNormals(*normal_map, source, T, p.threads);
   const WeightedCorrespondences final_correspondences = computeWeightedCorrespondences(
-      target, source, candidates, T, p.nu, sigma_squared, p.threads);
+      source, candidates, surface_model ? final_normals : PointList(), inverse_kappa, T, p.nu,
+      sigma_squared, p.threads);
   computePoseCovariance(final_correspondences, T, sigma_squared, &result.covariance);
-  fillInlierStatistics(target, source, candidates, T, p.inlier_sigmas * result.sigma, &result);
-  result.degeneracy_ratio = constraintEigenvalueRatio(target, source, candidates, T);
+  fillInlierStatistics(source, candidates, T, p.inlier_sigmas * result.sigma, &result);
+  PointList moved(source.size());
+  for (size_t j = 0; j < source.size(); ++j) moved[j] = T * source[j];
+  result.degeneracy_ratio = constraintEigenvalueRatio(moved, final_normals);
 
   if (!result.converged) {
     std::ostringstream reason;
@@ -249,11 +296,11 @@ RegistrationResult PdaRegistration::alignUnchecked(
              << last_run_step.translation << " and rotated " << last_run_step.rotation << " rad)";
     }
     result.reason = reason.str();
-  } else if (result.degeneracy_ratio < p.degeneracy_threshold) {
+  } else if (result.degeneracy_ratio >= 0.0 && result.degeneracy_ratio < p.degeneracy_threshold) {
     std::ostringstream reason;
-    reason << "degenerate geometry: the overlap constrains some direction " << std::fixed
-           << "weakly (eigenvalue ratio " << result.degeneracy_ratio << " < "
-           << p.degeneracy_threshold << ", e.g. a single plane or a corridor)";
+    reason << "degenerate geometry: the overlap constrains some direction weakly (eigenvalue "
+           << "ratio " << result.degeneracy_ratio << " < " << p.degeneracy_threshold
+           << ", e.g. a single plane or a corridor)";
     result.converged = false;
     result.reason = reason.str();
   }

@@ -18,8 +18,8 @@ Eigen::Vector3d randomUnitVector(std::mt19937_64* generator) {
 Eigen::Isometry3d randomPerturbation(double angle_deg, double translation, uint64_t seed) {
   std::mt19937_64 generator(seed);
   Eigen::Isometry3d delta = Eigen::Isometry3d::Identity();
-  delta.linear() = Eigen::AngleAxisd(angle_deg * M_PI / 180.0, randomUnitVector(&generator))
-                       .toRotationMatrix();
+  delta.linear() =
+      Eigen::AngleAxisd(angle_deg * M_PI / 180.0, randomUnitVector(&generator)).toRotationMatrix();
   delta.translation() = translation * randomUnitVector(&generator);
   return delta;
 }

@@ -9,9 +9,9 @@ namespace pda_registration {
 
 size_t removeNonFinitePoints(PointList* points) {
   const size_t before = points->size();
-  points->erase(std::remove_if(points->begin(), points->end(),
-                               [](const Point& p) { return !p.allFinite(); }),
-                points->end());
+  points->erase(
+      std::remove_if(points->begin(), points->end(), [](const Point& p) { return !p.allFinite(); }),
+      points->end());
   return before - points->size();
 }
 

@@ -11,9 +11,12 @@ bool finitePositive(double v) { return std::isfinite(v) && v > 0.0; }
 
 std::string validateParameters(const RegistrationParameters& p) {
   std::ostringstream error;
-  if (p.k < 1 || p.k > 1000) error << "k must be in [1, 1000] (got " << p.k << ")";
-  else if (!finitePositive(p.radius)) error << "radius must be > 0 and finite (got " << p.radius << ")";
-  else if (std::isnan(p.nu) || !(p.nu > 0.0)) error << "nu must be > 0 or inf (got " << p.nu << ")";
+  if (p.k < 1 || p.k > 1000)
+    error << "k must be in [1, 1000] (got " << p.k << ")";
+  else if (!finitePositive(p.radius))
+    error << "radius must be > 0 and finite (got " << p.radius << ")";
+  else if (std::isnan(p.nu) || !(p.nu > 0.0))
+    error << "nu must be > 0 or inf (got " << p.nu << ")";
   else if (p.sigma_mode == SigmaMode::kFixed && !finitePositive(p.fixed_sigma))
     error << "fixed_sigma must be > 0 and finite (got " << p.fixed_sigma << ")";
   else if (p.max_em_iterations < 1 || p.max_em_iterations > 1000)
@@ -22,8 +25,15 @@ std::string validateParameters(const RegistrationParameters& p) {
     error << "max_runs must be in [1, 1000] (got " << p.max_runs << ")";
   else if (!finiteNonNegative(p.translation_epsilon) || !finiteNonNegative(p.rotation_epsilon))
     error << "translation_epsilon and rotation_epsilon must be >= 0 and finite";
-  else if (p.ceres_max_iterations < 1 || p.ceres_max_iterations > 1000)
-    error << "ceres_max_iterations must be in [1, 1000] (got " << p.ceres_max_iterations << ")";
+  else if (p.solver_max_iterations < 1 || p.solver_max_iterations > 1000)
+    error << "solver_max_iterations must be in [1, 1000] (got " << p.solver_max_iterations << ")";
+  else if (!(std::isfinite(p.surface_anisotropy) && p.surface_anisotropy >= 1.0))
+    error << "surface_anisotropy must be >= 1 and finite (got " << p.surface_anisotropy << ")";
+  else if (p.solver == MStepSolver::kClosedForm && p.surface_anisotropy != 1.0)
+    error << "solver closed_form needs surface_anisotropy = 1 (it cannot weigh surface normals);"
+          << " use gauss_newton or ceres";
+  else if (!finitePositive(p.normal_voxel_size))
+    error << "normal_voxel_size must be > 0 and finite (got " << p.normal_voxel_size << ")";
   else if (!finiteNonNegative(p.source_voxel_size) || !finiteNonNegative(p.target_voxel_size))
     error << "voxel sizes must be >= 0 and finite (0 disables downsampling)";
   else if (p.min_correspondences < 3)
@@ -38,22 +48,38 @@ std::string validateParameters(const RegistrationParameters& p) {
 }
 
 const char* toString(MStepSolver solver) {
-  return solver == MStepSolver::kCeres ? "ceres" : "closed_form";
+  switch (solver) {
+    case MStepSolver::kGaussNewton:
+      return "gauss_newton";
+    case MStepSolver::kClosedForm:
+      return "closed_form";
+    case MStepSolver::kCeres:
+      return "ceres";
+  }
+  return "unknown";
 }
 
 const char* toString(SigmaMode mode) { return mode == SigmaMode::kFixed ? "fixed" : "estimated"; }
 
 bool parseSolver(const std::string& text, MStepSolver* solver) {
-  if (text == "closed_form") *solver = MStepSolver::kClosedForm;
-  else if (text == "ceres") *solver = MStepSolver::kCeres;
-  else return false;
+  if (text == "gauss_newton")
+    *solver = MStepSolver::kGaussNewton;
+  else if (text == "closed_form")
+    *solver = MStepSolver::kClosedForm;
+  else if (text == "ceres")
+    *solver = MStepSolver::kCeres;
+  else
+    return false;
   return true;
 }
 
 bool parseSigmaMode(const std::string& text, SigmaMode* mode) {
-  if (text == "estimated") *mode = SigmaMode::kEstimated;
-  else if (text == "fixed") *mode = SigmaMode::kFixed;
-  else return false;
+  if (text == "estimated")
+    *mode = SigmaMode::kEstimated;
+  else if (text == "fixed")
+    *mode = SigmaMode::kFixed;
+  else
+    return false;
   return true;
 }
 

@@ -12,7 +12,9 @@ struct PointListAdaptor {
   size_t kdtree_get_point_count() const { return points->size(); }
   double kdtree_get_pt(size_t index, size_t dim) const { return (*points)[index][dim]; }
   template <class BoundingBox>
-  bool kdtree_get_bbox(BoundingBox&) const { return false; }
+  bool kdtree_get_bbox(BoundingBox&) const {
+    return false;
+  }
 };
 
 // A k-NN result set that starts with the radius as its worst distance, so the tree prunes
@@ -25,7 +27,9 @@ class NearestWithinRadius {
   using CountType = size_t;
 
   NearestWithinRadius(size_t capacity, double squared_radius, size_t* indices, double* distances)
-      : indices_(indices), distances_(distances), capacity_(capacity),
+      : indices_(indices),
+        distances_(distances),
+        capacity_(capacity),
         squared_radius_(squared_radius) {}
 
   size_t size() const { return count_; }
@@ -57,10 +61,11 @@ class NearestWithinRadius {
 }  // namespace
 
 struct TargetIndex::KdTree {
-  using Tree = nanoflann::KDTreeSingleIndexAdaptor<
-      nanoflann::L2_Simple_Adaptor<double, PointListAdaptor>, PointListAdaptor, 3, size_t>;
+  using Tree =
+      nanoflann::KDTreeSingleIndexAdaptor<nanoflann::L2_Simple_Adaptor<double, PointListAdaptor>,
+                                          PointListAdaptor, 3, size_t>;
   explicit KdTree(const PointList* points)
-      : adaptor{points}, tree(3, adaptor, nanoflann::KDTreeSingleIndexAdaptorParams(16)) {
+      : adaptor{points}, tree(3, adaptor, nanoflann::KDTreeSingleIndexAdaptorParams(32)) {
     if (!points->empty()) tree.buildIndex();
   }
   PointListAdaptor adaptor;
@@ -72,8 +77,8 @@ TargetIndex::TargetIndex(PointList points)
 
 TargetIndex::~TargetIndex() = default;
 
-size_t TargetIndex::nearestWithinRadius(const Point& query, int k, double radius,
-                                        size_t* indices, double* squared_distances) const {
+size_t TargetIndex::nearestWithinRadius(const Point& query, int k, double radius, size_t* indices,
+                                        double* squared_distances) const {
   if (points_.empty() || k <= 0 || !(radius > 0.0)) return 0;
   NearestWithinRadius result(static_cast<size_t>(k), radius * radius, indices, squared_distances);
   tree_->tree.findNeighbors(result, query.data(), nanoflann::SearchParams());

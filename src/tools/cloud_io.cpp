@@ -12,6 +12,8 @@
 #include <cctype>
 #include <fstream>
 
+#include "pda_registration/tools/pcd_header.hpp"
+
 namespace pda_registration {
 namespace {
 
@@ -43,6 +45,11 @@ bool loadPointCloudFile(const std::string& path, PointList* points, std::string*
   int status = -1;
   try {
     if (extension == "pcd") {
+      std::string header_error;
+      if (!checkPcdHeader(path, &header_error)) {
+        *error = "'" + path + "': not a readable pcd point cloud (" + header_error + ")";
+        return false;
+      }
       status = pcl::io::loadPCDFile(path, blob);
     } else if (extension == "ply") {
       status = pcl::io::loadPLYFile(path, blob);

@@ -69,8 +69,8 @@ bool CommandLine::number(const std::string& flag, double* value, double min, dou
   const bool allow_infinity = std::isinf(max);
   if (!parseNumber(text(flag), &v, allow_infinity) || v < min || v > max) {
     std::ostringstream message;
-    message << "--" << flag << ": '" << text(flag) << "' is not a number in [" << min << ", "
-            << max << "]";
+    message << "--" << flag << ": '" << text(flag) << "' is not a number in [" << min << ", " << max
+            << "]";
     return setError(message.str());
   }
   *value = v;

@@ -8,10 +8,14 @@ namespace {
 std::string escaped(const std::string& text) {
   std::ostringstream out;
   for (const char c : text) {
-    if (c == '"' || c == '\\') out << '\\' << c;
-    else if (c == '\n') out << "\\n";
-    else if (static_cast<unsigned char>(c) < 0x20) out << ' ';
-    else out << c;
+    if (c == '"' || c == '\\')
+      out << '\\' << c;
+    else if (c == '\n')
+      out << "\\n";
+    else if (static_cast<unsigned char>(c) < 0x20)
+      out << ' ';
+    else
+      out << c;
   }
   return out.str();
 }
@@ -25,8 +29,10 @@ std::ostringstream& JsonLine::next(const std::string& key) {
 }
 
 JsonLine& JsonLine::add(const std::string& key, double value) {
-  if (std::isfinite(value)) next(key) << std::setprecision(10) << value;
-  else next(key) << "null";  // JSON has no NaN/Inf
+  if (std::isfinite(value))
+    next(key) << std::setprecision(10) << value;
+  else
+    next(key) << "null";  // JSON has no NaN/Inf
   return *this;
 }
 

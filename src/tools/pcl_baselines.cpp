@@ -50,18 +50,25 @@ BaselineResult alignWith(Registration* registration, const Cloud::Ptr& target,
 }  // namespace
 
 bool parseBaselineMethod(const std::string& text, BaselineMethod* method) {
-  if (text == "icp") *method = BaselineMethod::kIcp;
-  else if (text == "gicp") *method = BaselineMethod::kGicp;
-  else if (text == "ndt") *method = BaselineMethod::kNdt;
-  else return false;
+  if (text == "icp")
+    *method = BaselineMethod::kIcp;
+  else if (text == "gicp")
+    *method = BaselineMethod::kGicp;
+  else if (text == "ndt")
+    *method = BaselineMethod::kNdt;
+  else
+    return false;
   return true;
 }
 
 const char* toString(BaselineMethod method) {
   switch (method) {
-    case BaselineMethod::kIcp: return "icp";
-    case BaselineMethod::kGicp: return "gicp";
-    case BaselineMethod::kNdt: return "ndt";
+    case BaselineMethod::kIcp:
+      return "icp";
+    case BaselineMethod::kGicp:
+      return "gicp";
+    case BaselineMethod::kNdt:
+      return "ndt";
   }
   return "unknown";
 }

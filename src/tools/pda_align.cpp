@@ -88,12 +88,14 @@ int main(int argc, char** argv) {
     std::cout << kUsage << settingsFlagsHelp();
     return 0;
   }
-  if (!cl.has("target") || !cl.has("source")) return usageError("--target and --source are required");
+  if (!cl.has("target") || !cl.has("source"))
+    return usageError("--target and --source are required");
 
   MethodSettings settings;
   if (!readSettingsFlags(&cl, &settings)) return usageError(cl.error());
   const std::string method = cl.text("method", "pda");
-  if (!isKnownMethod(method)) return usageError("--method: '" + method + "' is not pda, icp, gicp or ndt");
+  if (!isKnownMethod(method))
+    return usageError("--method: '" + method + "' is not pda, icp, gicp or ndt");
   const std::vector<std::string> compared = splitList(cl.text("compare"));
   for (const std::string& m : compared) {
     if (!isKnownMethod(m)) return usageError("--compare: '" + m + "' is not pda, icp, gicp or ndt");
@@ -122,8 +124,10 @@ int main(int argc, char** argv) {
   }
 
   PointList target, source;
-  if (!loadPointCloudFile(cl.text("target"), &target, &error)) return usageError("--target: " + error);
-  if (!loadPointCloudFile(cl.text("source"), &source, &error)) return usageError("--source: " + error);
+  if (!loadPointCloudFile(cl.text("target"), &target, &error))
+    return usageError("--target: " + error);
+  if (!loadPointCloudFile(cl.text("source"), &source, &error))
+    return usageError("--source: " + error);
 
   // Timing comparison: every method runs `repeat` times, interleaved, on identical inputs.
   std::vector<std::string> methods = {method};
@@ -166,7 +170,8 @@ int main(int argc, char** argv) {
     const PoseError e = poseError(source, r.T_target_source, ground_truth);
     const PoseError initial_error = poseError(source, initial, ground_truth);
     json.add("mean_distance", e.mean_distance).add("rot_err_deg", e.rotation_deg);
-    json.add("trans_err_m", e.translation).add("initial_mean_distance", initial_error.mean_distance);
+    json.add("trans_err_m", e.translation)
+        .add("initial_mean_distance", initial_error.mean_distance);
   }
   if (!compared.empty()) {
     JsonLine speed;

@@ -34,7 +34,7 @@ const char* kUsage =
     "  --csv FILE             write every trial\n"
     "  --seed N               first perturbation seed (1)\n"
     "  PDA and the PCL methods share --radius (ICP/GICP max correspondence distance) and the\n"
-    "  voxel sizes; pda_single is PDA with --runs 1.\n";
+    "  voxel sizes; pda_single is PDA with --runs 1 and up to 100 EM iterations.\n";
 
 struct Level {
   double degrees, metres;
@@ -80,7 +80,8 @@ int fail(const std::string& message) {
 
 int main(int argc, char** argv) {
   std::set<std::string> value_flags = settingsFlagNames();
-  for (const char* flag : {"data", "cases", "levels", "trials", "methods", "success", "csv", "seed"}) {
+  for (const char* flag :
+       {"data", "cases", "levels", "trials", "methods", "success", "csv", "seed"}) {
     value_flags.insert(flag);
   }
   CommandLine cl(value_flags, {"help"});
@@ -102,15 +103,17 @@ int main(int argc, char** argv) {
   for (const std::string& item : split(cl.text("levels", "2:0.10,5:0.25,10:0.50"), ',')) {
     const std::vector<std::string> parts = split(item, ':');
     double d = 0, m = 0;
-    if (parts.size() != 2 || !parseNumber(parts[0], &d, false) || !parseNumber(parts[1], &m, false) ||
-        d < 0 || m < 0) {
+    if (parts.size() != 2 || !parseNumber(parts[0], &d, false) ||
+        !parseNumber(parts[1], &m, false) || d < 0 || m < 0) {
       return fail("--levels: '" + item + "' is not DEGREES:METRES");
     }
     levels.push_back({d, m});
   }
-  const std::vector<std::string> methods = split(cl.text("methods", "pda_single,pda,icp,gicp,ndt"), ',');
+  const std::vector<std::string> methods =
+      split(cl.text("methods", "pda_single,pda,icp,gicp,ndt"), ',');
   for (const std::string& m : methods) {
-    if (m != "pda_single" && !isKnownMethod(m)) return fail("--methods: unknown method '" + m + "'");
+    if (m != "pda_single" && !isKnownMethod(m))
+      return fail("--methods: unknown method '" + m + "'");
   }
   const std::string data = cl.text("data");
   std::vector<std::string> cases = split(cl.text("cases"), ',');
@@ -139,7 +142,10 @@ int main(int argc, char** argv) {
             truth * randomPerturbation(level.degrees, level.metres, static_cast<uint64_t>(seed));
         for (const std::string& method : methods) {  // interleaved: same load on every method
           MethodSettings s = settings;
-          if (method == "pda_single") s.pda.max_runs = 1;
+          if (method == "pda_single") {  // the paper's single run, EM run to convergence
+            s.pda.max_runs = 1;
+            s.pda.max_em_iterations = 100;
+          }
           const MethodOutcome o =
               runMethod(method == "pda_single" ? "pda" : method, target, source, initial, s);
           all.push_back({name, method, level, seed,
@@ -170,7 +176,9 @@ int main(int argc, char** argv) {
       std::map<std::string, std::vector<double>> errors, times;
       std::map<std::string, int> successes;
       for (const Trial& t : all) {
-        if (t.case_name != name || t.level.degrees != level.degrees || t.level.metres != level.metres) continue;
+        if (t.case_name != name || t.level.degrees != level.degrees ||
+            t.level.metres != level.metres)
+          continue;
         errors[t.method].push_back(t.error);
         times[t.method].push_back(t.time_ms);
         successes[t.method] += t.error < success_threshold ? 1 : 0;
@@ -178,13 +186,15 @@ int main(int argc, char** argv) {
       const double icp_time = times.count("icp") ? median(times["icp"]) : 0.0;
       for (const std::string& method : methods) {
         std::ostringstream row;
-        row << std::fixed << "| " << name << " | " << std::setprecision(0) << level.degrees
-            << "°/" << std::setprecision(2) << level.metres << " m | " << method << " | "
+        row << std::fixed << "| " << name << " | " << std::setprecision(0) << level.degrees << "°/"
+            << std::setprecision(2) << level.metres << " m | " << method << " | "
             << std::setprecision(4) << median(errors[method]) << " | " << successes[method] << "/"
             << errors[method].size() << " | " << std::setprecision(0) << median(times[method])
             << " | ";
-        if (icp_time > 0.0) row << std::setprecision(2) << median(times[method]) / icp_time;
-        else row << "-";
+        if (icp_time > 0.0)
+          row << std::setprecision(2) << median(times[method]) / icp_time;
+        else
+          row << "-";
         std::cout << row.str() << " |\n";
       }
     }

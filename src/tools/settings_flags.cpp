@@ -6,10 +6,26 @@
 namespace pda_registration {
 
 std::set<std::string> settingsFlagNames() {
-  return {"k",          "radius",        "nu",           "runs",         "em-iterations",
-          "solver",     "sigma-mode",    "fixed-sigma",  "threads",      "source-voxel",
-          "target-voxel", "translation-epsilon", "rotation-epsilon", "min-correspondences",
-          "max-iterations", "ndt-resolution", "ndt-step-size"};
+  return {"k",
+          "radius",
+          "nu",
+          "runs",
+          "em-iterations",
+          "solver",
+          "sigma-mode",
+          "fixed-sigma",
+          "threads",
+          "source-voxel",
+          "target-voxel",
+          "translation-epsilon",
+          "rotation-epsilon",
+          "min-correspondences",
+          "max-iterations",
+          "ndt-resolution",
+          "ndt-step-size",
+          "anisotropy",
+          "normal-voxel",
+          "solver-iterations"};
 }
 
 std::string settingsFlagsHelp() {
@@ -24,7 +40,14 @@ std::string settingsFlagsHelp() {
        << "  --runs N                max candidate-set recomputations, 1 = single run ("
        << p.max_runs << ")\n"
        << "  --em-iterations N       max EM iterations per run (" << p.max_em_iterations << ")\n"
-       << "  --solver S              closed_form | ceres (" << toString(p.solver) << ")\n"
+       << "  --solver S              gauss_newton | closed_form | ceres (" << toString(p.solver)
+       << ")\n"
+       << "  --solver-iterations N   GN/LM iterations per M-step (" << p.solver_max_iterations
+       << ")\n"
+       << "  --anisotropy K          surface anisotropy kappa, 1 = paper's isotropic model ("
+       << p.surface_anisotropy << ")\n"
+       << "  --normal-voxel V        voxel of the target normal map [m] (" << p.normal_voxel_size
+       << ")\n"
        << "  --sigma-mode M          estimated | fixed (" << toString(p.sigma_mode) << ")\n"
        << "  --fixed-sigma S         sigma in fixed mode [m] (" << p.fixed_sigma << ")\n"
        << "  --threads N             worker threads (" << p.threads << ")\n"
@@ -58,15 +81,18 @@ bool readSettingsFlags(CommandLine* cl, MethodSettings* settings) {
       !cl->integer("min-correspondences", &p.min_correspondences, 3, 100000000) ||
       !cl->integer("max-iterations", &b.max_iterations, 1, 100000) ||
       !cl->number("ndt-resolution", &b.ndt_resolution, 1e-6, 1e6) ||
-      !cl->number("ndt-step-size", &b.ndt_step_size, 1e-9, 1e6)) {
+      !cl->number("ndt-step-size", &b.ndt_step_size, 1e-9, 1e6) ||
+      !cl->number("anisotropy", &p.surface_anisotropy, 1.0, 1e12) ||
+      !cl->number("normal-voxel", &p.normal_voxel_size, 1e-9, 1e6) ||
+      !cl->integer("solver-iterations", &p.solver_max_iterations, 1, 1000)) {
     return false;
   }
   if (cl->has("solver") && !parseSolver(cl->text("solver"), &p.solver)) {
-    return cl->setError("--solver: '" + cl->text("solver") + "' is not closed_form or ceres");
+    return cl->setError("--solver: '" + cl->text("solver") +
+                        "' is not gauss_newton, closed_form or ceres");
   }
   if (cl->has("sigma-mode") && !parseSigmaMode(cl->text("sigma-mode"), &p.sigma_mode)) {
-    return cl->setError("--sigma-mode: '" + cl->text("sigma-mode") +
-                        "' is not estimated or fixed");
+    return cl->setError("--sigma-mode: '" + cl->text("sigma-mode") + "' is not estimated or fixed");
   }
   // The baselines share the inputs' limits: same radius, same voxel sizes.
   b.max_correspondence_distance = p.radius;

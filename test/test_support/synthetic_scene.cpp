@@ -77,7 +77,8 @@ SyntheticCase makeSyntheticRoom(const SyntheticOptions& o) {
     while (s + 1 < surfaces.size() && pick > areas[s]) pick -= areas[s++];
     const Rectangle& r = surfaces[s];
     const Point on_surface = r.origin + unit(generator) * r.u + unit(generator) * r.v;
-    const Point noisy = o.scale * (on_surface + Point(noise(generator), noise(generator), noise(generator)));
+    const Point noisy =
+        o.scale * (on_surface + Point(noise(generator), noise(generator), noise(generator)));
     c.source.push_back(T_source_target * noisy);
   }
   const int outliers = static_cast<int>(o.outlier_fraction * o.source_points);

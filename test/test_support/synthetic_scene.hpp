@@ -11,17 +11,17 @@ namespace pda_registration {
 namespace testing_support {
 
 struct SyntheticCase {
-  PointList target;            ///< dense, target frame
-  PointList source;            ///< sparse, source frame
+  PointList target;                                                   ///< dense, target frame
+  PointList source;                                                   ///< sparse, source frame
   Eigen::Isometry3d T_target_source = Eigen::Isometry3d::Identity();  ///< ground truth
 };
 
 struct SyntheticOptions {
-  double target_spacing = 0.04;  ///< [m] grid spacing on every surface
-  int source_points = 2000;      ///< inliers sampled at random on the surfaces
-  double source_noise = 0.01;    ///< [m] Gaussian, per axis
-  double outlier_fraction = 0.0; ///< extra points (fraction of source_points) uniform in the room
-  double scale = 1.0;            ///< multiply every length (1000 = millimetres)
+  double target_spacing = 0.04;   ///< [m] grid spacing on every surface
+  int source_points = 2000;       ///< inliers sampled at random on the surfaces
+  double source_noise = 0.01;     ///< [m] Gaussian, per axis
+  double outlier_fraction = 0.0;  ///< extra points (fraction of source_points) uniform in the room
+  double scale = 1.0;             ///< multiply every length (1000 = millimetres)
   uint64_t seed = 1;
 };
 

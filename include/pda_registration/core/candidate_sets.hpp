@@ -1,8 +1,9 @@
 #pragma once
 // Candidate sets C_j (paper Sec. IV): for each source point, the up-to-k nearest target points
 // within the radius, found once per run at the current estimate and then held fixed while EM
-// re-weights them. Stored flat (CSR layout): candidates of source j are
-// target_indices[offsets[j] .. offsets[j+1]).
+// re-weights them. Stored flat (CSR layout): candidates of source j are entries
+// offsets[j] .. offsets[j+1] of target_indices and points. The positions are gathered once per run
+// so every EM iteration streams through them instead of jumping around the target cloud.
 
 #include <Eigen/Geometry>
 #include <vector>
@@ -15,6 +16,7 @@ namespace pda_registration {
 struct CandidateSets {
   std::vector<size_t> offsets;         ///< size = source points + 1
   std::vector<size_t> target_indices;  ///< all candidates, grouped by source point
+  PointList points;                    ///< their positions (target frame), same order
 
   size_t sourceCount() const { return offsets.empty() ? 0 : offsets.size() - 1; }
   size_t candidateCount(size_t j) const { return offsets[j + 1] - offsets[j]; }

@@ -1,6 +1,7 @@
 #pragma once
 // M-step, closed form: the rigid transform minimising sum_j W_j ||y_bar_j - (R x_j + T)||^2
-// (weighted Kabsch/Umeyama, no scale). Exact in one SVD, so EM needs no inner iterations.
+// (weighted Kabsch/Umeyama, no scale). Exact in one SVD for the isotropic noise model
+// (surface_anisotropy = 1); it ignores surface normals, so it cannot serve the surface model.
 
 #include <Eigen/Geometry>
 

@@ -1,8 +1,8 @@
 #pragma once
 // Covariance of the estimate: the inverse Hessian of the EM objective at the solution,
-// sigma^2 (sum_j W_j J_j^T J_j)^-1, with J_j the Jacobian of the moved source point with respect
-// to (dx, dy, dz, droll, dpitch, dyaw): a translation increment plus a rotation increment about
-// the target frame's axes, the convention of geometry_msgs/PoseWithCovariance.
+// sigma^2 (sum_j W_j J_j^T M_j^-1 J_j)^-1, with M_j the point's noise shape and J_j the Jacobian
+// of the moved source point with respect to (dx, dy, dz, droll, dpitch, dyaw) (pose_jacobian.hpp),
+// the convention of geometry_msgs/PoseWithCovariance.
 
 #include <Eigen/Geometry>
 

@@ -9,8 +9,9 @@ namespace pda_registration {
 
 /// How the M-step solves the weighted least-squares problem (paper eq. 17).
 enum class MStepSolver {
-  kClosedForm,  ///< weighted Kabsch/Umeyama: exact for point-to-point, no iterations
-  kCeres,       ///< Ceres Levenberg–Marquardt on SE(3) (quaternion manifold x R^3)
+  kGaussNewton,  ///< Gauss-Newton on SE(3) with 6x6 normal equations: any noise model
+  kClosedForm,   ///< weighted Kabsch/Umeyama: exact, isotropic model only (surface_anisotropy 1)
+  kCeres,        ///< Ceres Levenberg-Marquardt on SE(3) (quaternion manifold x R^3)
 };
 
 /// How the residual scale sigma^2 (Sigma = sigma^2 I) is obtained.
@@ -21,21 +22,25 @@ enum class SigmaMode {
 
 struct RegistrationParameters {
   // --- Data association (paper Sec. IV) -----------------------------------------------------
-  int k = 10;             ///< max candidates per source point (k nearest target points)
-  double radius = 1.0;    ///< [length] candidates must lie within this distance
+  int k = 10;           ///< max candidates per source point (k nearest target points)
+  double radius = 1.0;  ///< [length] candidates must lie within this distance
   // --- E-step ------------------------------------------------------------------------------
-  double nu = 5.0;        ///< Student-t degrees of freedom; +inf gives the Gaussian of eq. 19
+  double nu = 5.0;  ///< Student-t degrees of freedom; +inf gives the Gaussian of eq. 19
   SigmaMode sigma_mode = SigmaMode::kEstimated;
   double fixed_sigma = 1.0;  ///< [length] sigma used when sigma_mode == kFixed
+  /// kappa of the noise shape (noise_model.hpp): how much less a residual along the target
+  /// surface counts than one across it. 1 = the paper's isotropic Sigma = sigma^2 I.
+  double surface_anisotropy = 1000.0;
+  double normal_voxel_size = 0.1;   ///< [length] voxel of the target normal map (> 0)
   // --- EM loop inside one run (candidate sets fixed) ----------------------------------------
-  int max_em_iterations = 20;
+  int max_em_iterations = 5;
   // --- Multiple runs (candidate sets recomputed from the current estimate) ------------------
-  int max_runs = 30;      ///< 1 = the paper's single-run mode
+  int max_runs = 30;                  ///< 1 = the paper's single-run mode
   double translation_epsilon = 1e-4;  ///< [length] converged when a step moves less than this
   double rotation_epsilon = 1e-4;     ///< [rad]    ... and rotates less than this
   // --- M-step --------------------------------------------------------------------------------
-  MStepSolver solver = MStepSolver::kClosedForm;
-  int ceres_max_iterations = 10;      ///< LM iterations per M-step (Ceres solver only)
+  MStepSolver solver = MStepSolver::kGaussNewton;
+  int solver_max_iterations = 1;  ///< GN / LM iterations per M-step (not closed form)
   // --- Pre-processing ------------------------------------------------------------------------
   double source_voxel_size = 0.0;  ///< [length] 0 = keep every source point
   double target_voxel_size = 0.0;  ///< [length] 0 = keep every target point
@@ -44,7 +49,8 @@ struct RegistrationParameters {
   double inlier_sigmas = 3.0;    ///< a source point is an inlier if its best residual < this*sigma
   double degeneracy_threshold = 1e-3;  ///< min/max eigenvalue ratio of the constraint matrix
   // --- Execution -----------------------------------------------------------------------------
-  int threads = 1;  ///< worker threads for candidate search and E-step (results do not depend on it)
+  int threads =
+      1;  ///< worker threads for candidate search and E-step (results do not depend on it)
 };
 
 /// Empty string when the parameters are usable, otherwise a one-line explanation.
@@ -52,7 +58,7 @@ std::string validateParameters(const RegistrationParameters& parameters);
 
 const char* toString(MStepSolver solver);
 const char* toString(SigmaMode mode);
-/// Parses "closed_form" / "ceres"; returns false on anything else.
+/// Parses "gauss_newton" / "closed_form" / "ceres"; returns false on anything else.
 bool parseSolver(const std::string& text, MStepSolver* solver);
 /// Parses "estimated" / "fixed"; returns false on anything else.
 bool parseSigmaMode(const std::string& text, SigmaMode* mode);

@@ -17,19 +17,19 @@ struct RegistrationResult {
   bool converged = false;
   std::string reason;  ///< why not converged (empty when converged)
 
-  int runs = 0;            ///< candidate-set computations (outer loop)
-  int em_iterations = 0;   ///< E/M iterations summed over runs
-  double sigma = 0.0;      ///< final residual scale [length]
+  int runs = 0;           ///< candidate-set computations (outer loop)
+  int em_iterations = 0;  ///< E/M iterations summed over runs
+  double sigma = 0.0;     ///< final residual scale [length]
 
-  size_t source_points_used = 0;      ///< finite source points after downsampling
-  size_t source_points_dropped = 0;   ///< NaN/Inf source points dropped
-  size_t target_points_used = 0;      ///< target points indexed
-  size_t target_points_dropped = 0;   ///< NaN/Inf target points dropped
+  size_t source_points_used = 0;             ///< finite source points after downsampling
+  size_t source_points_dropped = 0;          ///< NaN/Inf source points dropped
+  size_t target_points_used = 0;             ///< target points indexed
+  size_t target_points_dropped = 0;          ///< NaN/Inf target points dropped
   size_t source_points_with_candidates = 0;  ///< in the last run
   double inlier_fraction = 0.0;  ///< source points whose best residual is under inlier_sigmas*sigma
   double mean_residual = 0.0;    ///< [length] mean distance to the best candidate, inliers only
-  double degeneracy_ratio = 0.0; ///< min/max eigenvalue of the point-to-plane constraint matrix
-  double time_ms = 0.0;          ///< wall time of the alignment (target indexing excluded)
+  double degeneracy_ratio = 0.0;  ///< min/max eigenvalue of the point-to-plane constraint matrix
+  double time_ms = 0.0;           ///< wall time of the alignment (target indexing excluded)
 };
 
 }  // namespace pda_registration

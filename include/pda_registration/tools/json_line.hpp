@@ -10,7 +10,9 @@ class JsonLine {
  public:
   JsonLine& add(const std::string& key, double value);
   JsonLine& add(const std::string& key, int value) { return add(key, static_cast<double>(value)); }
-  JsonLine& add(const std::string& key, size_t value) { return add(key, static_cast<double>(value)); }
+  JsonLine& add(const std::string& key, size_t value) {
+    return add(key, static_cast<double>(value));
+  }
   JsonLine& add(const std::string& key, bool value);
   JsonLine& add(const std::string& key, const std::string& value);
   JsonLine& add(const std::string& key, const char* value) { return add(key, std::string(value)); }

@@ -28,8 +28,8 @@ struct BaselineParameters {
 struct BaselineResult {
   Eigen::Isometry3d T_target_source = Eigen::Isometry3d::Identity();
   bool converged = false;
-  double fitness = 0.0;   ///< PCL's fitness score (mean squared distance of correspondences)
-  double time_ms = 0.0;   ///< setInputTarget + setInputSource + align (all index building included)
+  double fitness = 0.0;  ///< PCL's fitness score (mean squared distance of correspondences)
+  double time_ms = 0.0;  ///< setInputTarget + setInputSource + align (all index building included)
 };
 
 /// Runs one PCL method. Non-finite points are dropped first. Never throws.

@@ -1,0 +1,118 @@
+// The M-step solvers minimise the same weighted objective: given the same weights they must land
+// on the same transform, and recover it exactly from noise-free correspondences.
+#include <gtest/gtest.h>
+
+#include <Eigen/Eigenvalues>
+#include <random>
+
+#include "pda_registration/core/ceres_solver.hpp"
+#include "pda_registration/core/closed_form_solver.hpp"
+#include "pda_registration/core/gauss_newton_solver.hpp"
+#include "pda_registration/core/pose_covariance.hpp"
+
+namespace pda_registration {
+namespace {
+
+Eigen::Isometry3d someTransform() {
+  Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
+  T.linear() = Eigen::AngleAxisd(0.3, Eigen::Vector3d(1, 2, 3).normalized()).toRotationMatrix();
+  T.translation() = Eigen::Vector3d(0.5, -1.0, 0.25);
+  return T;
+}
+
+// Correspondences y = T x + noise with random positive weights and random unit normals.
+WeightedCorrespondences makeCorrespondences(const Eigen::Isometry3d& T, double noise,
+                                            double inverse_kappa, int count, uint64_t seed) {
+  std::mt19937_64 generator(seed);
+  std::uniform_real_distribution<double> coordinate(-5.0, 5.0), weight(0.1, 2.0);
+  std::normal_distribution<double> gaussian(0.0, 1.0);
+  WeightedCorrespondences c;
+  c.inverse_kappa = inverse_kappa;
+  for (int i = 0; i < count; ++i) {
+    const Point x(coordinate(generator), coordinate(generator), coordinate(generator));
+    const Point n =
+        Point(gaussian(generator), gaussian(generator), gaussian(generator)).normalized();
+    c.source_index.push_back(i);
+    c.source.push_back(x);
+    c.target_mean.push_back(
+        T * x + noise * Point(gaussian(generator), gaussian(generator), gaussian(generator)));
+    c.weight.push_back(weight(generator));
+    c.normal.push_back(n);
+  }
+  return c;
+}
+
+double rotationDistance(const Eigen::Isometry3d& a, const Eigen::Isometry3d& b) {
+  return Eigen::AngleAxisd(a.linear() * b.linear().transpose()).angle();
+}
+
+TEST(Solvers, AllRecoverAnExactTransform) {
+  const Eigen::Isometry3d truth = someTransform();
+  const WeightedCorrespondences c = makeCorrespondences(truth, 0.0, 1.0, 200, 1);
+  Eigen::Isometry3d closed = Eigen::Isometry3d::Identity();
+  Eigen::Isometry3d newton = Eigen::Isometry3d::Identity();
+  Eigen::Isometry3d ceres = Eigen::Isometry3d::Identity();
+  ASSERT_TRUE(solveClosedForm(c, &closed));
+  ASSERT_TRUE(solveGaussNewton(c, 20, 0.0, 0.0, &newton));
+  ASSERT_TRUE(solveWithCeres(c, 50, 1, &ceres));
+  for (const Eigen::Isometry3d* T : {&closed, &newton, &ceres}) {
+    EXPECT_LT((T->translation() - truth.translation()).norm(), 1e-8);
+    EXPECT_LT(rotationDistance(*T, truth), 1e-8);
+  }
+}
+
+// Isotropic model: the closed form is the exact minimiser; the iterative solvers must agree.
+TEST(Solvers, AgreeOnTheIsotropicWeightedProblem) {
+  const WeightedCorrespondences c = makeCorrespondences(someTransform(), 0.2, 1.0, 300, 2);
+  Eigen::Isometry3d closed = Eigen::Isometry3d::Identity();
+  ASSERT_TRUE(solveClosedForm(c, &closed));
+  for (bool use_ceres : {false, true}) {
+    Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
+    ASSERT_TRUE(use_ceres ? solveWithCeres(c, 100, 1, &T) : solveGaussNewton(c, 50, 0, 0, &T));
+    EXPECT_LT((T.translation() - closed.translation()).norm(), 1e-6) << use_ceres;
+    EXPECT_LT(rotationDistance(T, closed), 1e-6) << use_ceres;
+    EXPECT_NEAR(weightedObjective(c, T), weightedObjective(c, closed),
+                1e-9 * weightedObjective(c, closed));
+  }
+}
+
+// Surface model (kappa = 100): Gauss-Newton and Ceres minimise the same anisotropic objective,
+// and its minimum is no higher than the closed form's (which ignores the normals).
+TEST(Solvers, GaussNewtonAndCeresAgreeOnTheSurfaceModel) {
+  const WeightedCorrespondences c = makeCorrespondences(someTransform(), 0.2, 0.01, 300, 3);
+  Eigen::Isometry3d newton = Eigen::Isometry3d::Identity();
+  Eigen::Isometry3d ceres = Eigen::Isometry3d::Identity();
+  Eigen::Isometry3d closed = Eigen::Isometry3d::Identity();
+  ASSERT_TRUE(solveGaussNewton(c, 50, 0, 0, &newton));
+  ASSERT_TRUE(solveWithCeres(c, 100, 1, &ceres));
+  ASSERT_TRUE(solveClosedForm(c, &closed));
+  EXPECT_LT((newton.translation() - ceres.translation()).norm(), 1e-6);
+  EXPECT_LT(rotationDistance(newton, ceres), 1e-7);
+  EXPECT_LE(weightedObjective(c, newton), weightedObjective(c, closed) + 1e-9);
+}
+
+TEST(Solvers, RefuseTooFewCorrespondences) {
+  const WeightedCorrespondences c = makeCorrespondences(someTransform(), 0.0, 1.0, 2, 4);
+  Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
+  EXPECT_FALSE(solveClosedForm(c, &T));
+  EXPECT_FALSE(solveGaussNewton(c, 5, 0, 0, &T));
+  EXPECT_FALSE(solveWithCeres(c, 5, 1, &T));
+  EXPECT_TRUE(T.isApprox(Eigen::Isometry3d::Identity()));
+}
+
+// The covariance is symmetric positive definite and scales with sigma^2.
+TEST(PoseCovariance, PositiveDefiniteAndProportionalToSigmaSquared) {
+  const WeightedCorrespondences c = makeCorrespondences(someTransform(), 0.05, 1.0, 500, 5);
+  Eigen::Matrix<double, 6, 6> small, large;
+  ASSERT_TRUE(computePoseCovariance(c, someTransform(), 0.01, &small));
+  ASSERT_TRUE(computePoseCovariance(c, someTransform(), 0.04, &large));
+  EXPECT_TRUE(small.isApprox(small.transpose()));
+  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix<double, 6, 6>> eigen(small);
+  EXPECT_GT(eigen.eigenvalues().minCoeff(), 0.0);
+  EXPECT_TRUE(large.isApprox(4.0 * small, 1e-9));
+  // 500 points spread over 10 m with sigma 0.1 m pin the translation to ~0.1/sqrt(500*w) m.
+  EXPECT_LT(std::sqrt(small(0, 0)), 0.02);
+}
+
+}  // namespace
+}  // namespace pda_registration
