@@ -100,6 +100,64 @@ void fillInlierStatistics(const PointList& source, const CandidateSets& candidat
   result->mean_residual = inliers == 0 ? 0.0 : distance_sum / static_cast<double>(inliers);
 }
 
+// The part of the EM state that carries over from run to run.
+struct EmState {
+  Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
+  double sigma_squared = 0.0;  // 0 until the first run estimates it
+};
+
+// One run: EM on fixed candidate sets until a step is below the epsilons or max_em_iterations.
+// Returns false when the M-step cannot solve.
+bool runEm(const PointList& source, const CandidateSets& candidates,
+           const SurfaceNormalMap& normal_map, const RegistrationParameters& p, EmState* state,
+           bool* settled, int* em_iterations) {
+  const bool estimate_sigma = p.sigma_mode == SigmaMode::kEstimated;
+  const bool surface_model = p.surface_anisotropy > 1.0;
+  // A floor keeps the t-weights defined when the clouds match exactly (sigma -> 0).
+  const double sigma_squared_floor = std::pow(1e-6 * p.radius, 2);
+  const PointList normals =
+      surface_model ? lookupNormals(normal_map, source, state->T, p.threads) : PointList();
+  if (estimate_sigma && state->sigma_squared == 0.0) {
+    state->sigma_squared =
+        std::max(initialSigmaSquared(source, candidates, state->T), sigma_squared_floor);
+  }
+  *settled = false;
+  for (int iteration = 0; iteration < p.max_em_iterations; ++iteration) {
+    const WeightedCorrespondences correspondences =
+        computeWeightedCorrespondences(source, candidates, normals, 1.0 / p.surface_anisotropy,
+                                       state->T, p.nu, state->sigma_squared, p.threads);
+    Eigen::Isometry3d T_next = state->T;
+    if (!runMStep(correspondences, p, &T_next)) return false;
+    if (estimate_sigma) {
+      state->sigma_squared =
+          std::max(estimateSigmaSquared(correspondences, T_next), sigma_squared_floor);
+    }
+    const Increment step = incrementBetween(state->T, T_next);
+    state->T = T_next;
+    ++*em_iterations;
+    if (isSmall(step, p)) {
+      *settled = true;
+      break;
+    }
+  }
+  return true;
+}
+
+// Covariance, inlier statistics and the degeneracy check at the final estimate.
+void fillFinalStatistics(const PointList& source, const CandidateSets& candidates,
+                         const SurfaceNormalMap& normal_map, const RegistrationParameters& p,
+                         const EmState& state, RegistrationResult* result) {
+  const PointList normals = lookupNormals(normal_map, source, state.T, p.threads);
+  const WeightedCorrespondences correspondences = computeWeightedCorrespondences(
+      source, candidates, p.surface_anisotropy > 1.0 ? normals : PointList(),
+      1.0 / p.surface_anisotropy, state.T, p.nu, state.sigma_squared, p.threads);
+  computePoseCovariance(correspondences, state.T, state.sigma_squared, &result->covariance);
+  fillInlierStatistics(source, candidates, state.T, p.inlier_sigmas * result->sigma, result);
+  PointList moved(source.size());
+  for (size_t j = 0; j < source.size(); ++j) moved[j] = state.T * source[j];
+  result->degeneracy_ratio = constraintEigenvalueRatio(moved, normals);
+}
+
 }  // namespace
 
 PdaRegistration::PdaRegistration(const RegistrationParameters& parameters)
@@ -214,19 +272,25 @@ RegistrationResult PdaRegistration::alignUnchecked(
     return result;
   }
 
-  const bool estimate_sigma = p.sigma_mode == SigmaMode::kEstimated;
-  const bool surface_model = p.surface_anisotropy > 1.0;
-  const double inverse_kappa = 1.0 / p.surface_anisotropy;
-  // A floor keeps the t-weights defined when the clouds match exactly (sigma -> 0).
-  const double sigma_squared_floor = std::pow(1e-6 * p.radius, 2);
-  double sigma_squared = estimate_sigma ? 0.0 : p.fixed_sigma * p.fixed_sigma;
+  // Early runs on a strided subset: they only need to bring the estimate close, and cost a
+  // fraction of a full candidate search. Never in single-run mode.
+  PointList coarse_source;
+  if (p.max_runs > 1 && p.coarse_stride > 1 &&
+      source.size() / p.coarse_stride >= 20 * static_cast<size_t>(p.min_correspondences)) {
+    for (size_t j = 0; j < source.size(); j += p.coarse_stride) coarse_source.push_back(source[j]);
+  }
+  bool coarse_stage = !coarse_source.empty();
+
+  EmState state;
+  state.T = T;
+  if (p.sigma_mode == SigmaMode::kFixed) state.sigma_squared = p.fixed_sigma * p.fixed_sigma;
   CandidateSets candidates;
-  PointList normals;
   Increment last_run_step{0.0, 0.0};
   bool em_settled = false;  // did the last run's EM loop stop on the epsilons?
 
   for (int run = 1; run <= p.max_runs; ++run) {
-    candidates = findCandidateSets(*index, source, T, p.k, p.radius, p.threads);
+    const PointList& active = coarse_stage ? coarse_source : source;
+    candidates = findCandidateSets(*index, active, state.T, p.k, p.radius, p.threads);
     result.runs = run;
     result.source_points_with_candidates = candidates.sourcePointsWithCandidates();
     if (result.source_points_with_candidates < static_cast<size_t>(p.min_correspondences)) {
@@ -235,57 +299,36 @@ RegistrationResult PdaRegistration::alignUnchecked(
              << " source points have a target point within radius " << p.radius << " (need "
              << p.min_correspondences << ")";
       result.reason = reason.str();
-      result.sigma = std::sqrt(sigma_squared);
+      result.sigma = std::sqrt(state.sigma_squared);
       return result;
     }
-    if (surface_model) normals = lookupNormals(*normal_map, source, T, p.threads);
-    if (estimate_sigma && sigma_squared == 0.0) {
-      sigma_squared = std::max(initialSigmaSquared(source, candidates, T), sigma_squared_floor);
+    const Eigen::Isometry3d T_run_start = state.T;
+    if (!runEm(active, candidates, *normal_map, p, &state, &em_settled, &result.em_iterations)) {
+      result.reason = "M-step failed: the weighted correspondences do not constrain the pose";
+      return result;
     }
-
-    const Eigen::Isometry3d T_run_start = T;
-    em_settled = false;
-    for (int iteration = 0; iteration < p.max_em_iterations; ++iteration) {
-      const WeightedCorrespondences correspondences = computeWeightedCorrespondences(
-          source, candidates, normals, inverse_kappa, T, p.nu, sigma_squared, p.threads);
-      Eigen::Isometry3d T_next = T;
-      if (!runMStep(correspondences, p, &T_next)) {
-        result.reason = "M-step failed: the weighted correspondences do not constrain the pose";
-        return result;
-      }
-      if (estimate_sigma) {
-        sigma_squared =
-            std::max(estimateSigmaSquared(correspondences, T_next), sigma_squared_floor);
-      }
-      const Increment step = incrementBetween(T, T_next);
-      T = T_next;
-      ++result.em_iterations;
-      if (isSmall(step, p)) {
-        em_settled = true;
-        break;
-      }
+    last_run_step = incrementBetween(T_run_start, state.T);
+    if (coarse_stage) {
+      coarse_stage = !(last_run_step.translation <= 10.0 * p.translation_epsilon &&
+                       last_run_step.rotation <= 10.0 * p.rotation_epsilon);
+      continue;  // convergence is only ever declared on every point
     }
-    last_run_step = incrementBetween(T_run_start, T);
     if (isSmall(last_run_step, p)) {
       result.converged = true;
       break;
     }
   }
-
   // With max_runs = 1 (the paper's single-run mode) convergence means EM settled in that run.
   if (!result.converged && p.max_runs == 1) result.converged = em_settled;
 
+  T = state.T;
   result.T_target_source = T;
-  result.sigma = std::sqrt(sigma_squared);
-  const PointList final_normals = lookupNormals(*normal_map, source, T, p.threads);
-  const WeightedCorrespondences final_correspondences = computeWeightedCorrespondences(
-      source, candidates, surface_model ? final_normals : PointList(), inverse_kappa, T, p.nu,
-      sigma_squared, p.threads);
-  computePoseCovariance(final_correspondences, T, sigma_squared, &result.covariance);
-  fillInlierStatistics(source, candidates, T, p.inlier_sigmas * result.sigma, &result);
-  PointList moved(source.size());
-  for (size_t j = 0; j < source.size(); ++j) moved[j] = T * source[j];
-  result.degeneracy_ratio = constraintEigenvalueRatio(moved, final_normals);
+  result.sigma = std::sqrt(state.sigma_squared);
+  // Statistics on every source point (the loop may have stopped in the coarse stage).
+  if (candidates.sourceCount() != source.size()) {
+    candidates = findCandidateSets(*index, source, T, p.k, p.radius, p.threads);
+  }
+  fillFinalStatistics(source, candidates, *normal_map, p, state, &result);
 
   if (!result.converged) {
     std::ostringstream reason;

@@ -23,6 +23,8 @@ std::string validateParameters(const RegistrationParameters& p) {
     error << "max_em_iterations must be in [1, 1000] (got " << p.max_em_iterations << ")";
   else if (p.max_runs < 1 || p.max_runs > 1000)
     error << "max_runs must be in [1, 1000] (got " << p.max_runs << ")";
+  else if (p.coarse_stride < 1 || p.coarse_stride > 1000)
+    error << "coarse_stride must be in [1, 1000] (got " << p.coarse_stride << ")";
   else if (!finiteNonNegative(p.translation_epsilon) || !finiteNonNegative(p.rotation_epsilon))
     error << "translation_epsilon and rotation_epsilon must be >= 0 and finite";
   else if (p.solver_max_iterations < 1 || p.solver_max_iterations > 1000)

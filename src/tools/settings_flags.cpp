@@ -25,7 +25,8 @@ std::set<std::string> settingsFlagNames() {
           "ndt-step-size",
           "anisotropy",
           "normal-voxel",
-          "solver-iterations"};
+          "solver-iterations",
+          "coarse-stride"};
 }
 
 std::string settingsFlagsHelp() {
@@ -40,6 +41,8 @@ std::string settingsFlagsHelp() {
        << "  --runs N                max candidate-set recomputations, 1 = single run ("
        << p.max_runs << ")\n"
        << "  --em-iterations N       max EM iterations per run (" << p.max_em_iterations << ")\n"
+       << "  --coarse-stride N       early runs use every N-th source point, 1 = off ("
+       << p.coarse_stride << ")\n"
        << "  --solver S              gauss_newton | closed_form | ceres (" << toString(p.solver)
        << ")\n"
        << "  --solver-iterations N   GN/LM iterations per M-step (" << p.solver_max_iterations
@@ -84,7 +87,8 @@ bool readSettingsFlags(CommandLine* cl, MethodSettings* settings) {
       !cl->number("ndt-step-size", &b.ndt_step_size, 1e-9, 1e6) ||
       !cl->number("anisotropy", &p.surface_anisotropy, 1.0, 1e12) ||
       !cl->number("normal-voxel", &p.normal_voxel_size, 1e-9, 1e6) ||
-      !cl->integer("solver-iterations", &p.solver_max_iterations, 1, 1000)) {
+      !cl->integer("solver-iterations", &p.solver_max_iterations, 1, 1000) ||
+      !cl->integer("coarse-stride", &p.coarse_stride, 1, 1000)) {
     return false;
   }
   if (cl->has("solver") && !parseSolver(cl->text("solver"), &p.solver)) {

@@ -22,7 +22,7 @@ enum class SigmaMode {
 
 struct RegistrationParameters {
   // --- Data association (paper Sec. IV) -----------------------------------------------------
-  int k = 10;           ///< max candidates per source point (k nearest target points)
+  int k = 5;            ///< max candidates per source point (k nearest target points)
   double radius = 1.0;  ///< [length] candidates must lie within this distance
   // --- E-step ------------------------------------------------------------------------------
   double nu = 5.0;  ///< Student-t degrees of freedom; +inf gives the Gaussian of eq. 19
@@ -31,11 +31,14 @@ struct RegistrationParameters {
   /// kappa of the noise shape (noise_model.hpp): how much less a residual along the target
   /// surface counts than one across it. 1 = the paper's isotropic Sigma = sigma^2 I.
   double surface_anisotropy = 1000.0;
-  double normal_voxel_size = 0.1;   ///< [length] voxel of the target normal map (> 0)
+  double normal_voxel_size = 0.1;  ///< [length] voxel of the target normal map (> 0)
   // --- EM loop inside one run (candidate sets fixed) ----------------------------------------
   int max_em_iterations = 5;
   // --- Multiple runs (candidate sets recomputed from the current estimate) ------------------
-  int max_runs = 30;                  ///< 1 = the paper's single-run mode
+  int max_runs = 30;  ///< 1 = the paper's single-run mode
+  /// Early runs use every coarse_stride-th source point until a run moves less than 10 epsilons;
+  /// the final runs (and convergence) always use every point. 1 = always every point.
+  int coarse_stride = 4;
   double translation_epsilon = 1e-4;  ///< [length] converged when a step moves less than this
   double rotation_epsilon = 1e-4;     ///< [rad]    ... and rotates less than this
   // --- M-step --------------------------------------------------------------------------------
