@@ -1,0 +1,1 @@
+# The thin ROS layer: conversions, markers, the nodelet. Filled in with the nodelet.
