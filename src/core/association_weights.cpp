@@ -124,6 +124,34 @@ WeightedCorrespondences computeWeightedCorrespondences(
   return out;
 }
 
+Associations computeAssociations(const PointList& source, const CandidateSets& candidates,
+                                 const PointList& normals, double inverse_kappa,
+                                 const Eigen::Isometry3d& T_target_source, double nu,
+                                 double sigma_squared) {
+  Associations out;
+  out.offsets.push_back(0);
+  std::vector<double> residuals, rho;
+  for (size_t j = 0; j < candidates.sourceCount(); ++j) {
+    const size_t count = candidates.candidateCount(j);
+    if (count == 0) continue;
+    const Point x = T_target_source * source[j];
+    const Point normal = normals.empty() ? Point::Zero() : normals[j];
+    const Point* y = &candidates.points[candidates.offsets[j]];
+    residuals.resize(count);
+    rho.resize(count);
+    for (size_t i = 0; i < count; ++i)
+      residuals[i] = shapedSquaredNorm(y[i] - x, normal, inverse_kappa);
+    const size_t first = out.posterior.size();
+    out.posterior.resize(first + count);
+    computeCandidateWeights(residuals.data(), count, nu, sigma_squared, &out.posterior[first],
+                            rho.data());
+    out.source_points.push_back(x);
+    out.candidates.insert(out.candidates.end(), y, y + count);
+    out.offsets.push_back(out.candidates.size());
+  }
+  return out;
+}
+
 double weightedObjective(const WeightedCorrespondences& correspondences,
                          const Eigen::Isometry3d& T_target_source) {
   double total = correspondences.spread;

@@ -146,7 +146,8 @@ bool runEm(const PointList& source, const CandidateSets& candidates,
 // Covariance, inlier statistics and the degeneracy check at the final estimate.
 void fillFinalStatistics(const PointList& source, const CandidateSets& candidates,
                          const SurfaceNormalMap& normal_map, const RegistrationParameters& p,
-                         const EmState& state, RegistrationResult* result) {
+                         const EmState& state, RegistrationResult* result,
+                         Associations* associations) {
   const PointList normals = lookupNormals(normal_map, source, state.T, p.threads);
   const WeightedCorrespondences correspondences = computeWeightedCorrespondences(
       source, candidates, p.surface_anisotropy > 1.0 ? normals : PointList(),
@@ -156,6 +157,11 @@ void fillFinalStatistics(const PointList& source, const CandidateSets& candidate
   PointList moved(source.size());
   for (size_t j = 0; j < source.size(); ++j) moved[j] = state.T * source[j];
   result->degeneracy_ratio = constraintEigenvalueRatio(moved, normals);
+  if (associations) {
+    *associations =
+        computeAssociations(source, candidates, p.surface_anisotropy > 1.0 ? normals : PointList(),
+                            1.0 / p.surface_anisotropy, state.T, p.nu, state.sigma_squared);
+  }
 }
 
 }  // namespace
@@ -213,16 +219,20 @@ void PdaRegistration::rebuildNormals() {
 }
 
 RegistrationResult PdaRegistration::align(const PointList& source,
-                                          const Eigen::Isometry3d& T_target_source_initial) const {
+                                          const Eigen::Isometry3d& T_target_source_initial,
+                                          Associations* associations) const {
+  if (associations) *associations = Associations();
   const auto start = std::chrono::steady_clock::now();
   RegistrationResult result;
   try {
-    result = alignUnchecked(source, T_target_source_initial);
+    result = alignUnchecked(source, T_target_source_initial, associations);
   } catch (const std::exception& error) {
+    if (associations) *associations = Associations();
     result = RegistrationResult();
     result.T_target_source = T_target_source_initial;
     result.reason = std::string("internal error: ") + error.what();
   } catch (...) {
+    if (associations) *associations = Associations();
     result = RegistrationResult();
     result.T_target_source = T_target_source_initial;
     result.reason = "internal error: unknown exception";
@@ -232,8 +242,9 @@ RegistrationResult PdaRegistration::align(const PointList& source,
   return result;
 }
 
-RegistrationResult PdaRegistration::alignUnchecked(
-    const PointList& source_input, const Eigen::Isometry3d& T_target_source_initial) const {
+RegistrationResult PdaRegistration::alignUnchecked(const PointList& source_input,
+                                                   const Eigen::Isometry3d& T_target_source_initial,
+                                                   Associations* associations) const {
   const RegistrationParameters& p = parameters_;
   RegistrationResult result;
   result.T_target_source = T_target_source_initial;
@@ -328,7 +339,7 @@ RegistrationResult PdaRegistration::alignUnchecked(
   if (candidates.sourceCount() != source.size()) {
     candidates = findCandidateSets(*index, source, T, p.k, p.radius, p.threads);
   }
-  fillFinalStatistics(source, candidates, *normal_map, p, state, &result);
+  fillFinalStatistics(source, candidates, *normal_map, p, state, &result, associations);
 
   if (!result.converged) {
     std::ostringstream reason;

@@ -30,4 +30,19 @@ bool computePoseCovariance(const WeightedCorrespondences& correspondences,
   return covariance->allFinite();
 }
 
+Eigen::Matrix<double, 6, 6> invertedPoseCovariance(const Eigen::Isometry3d& T,
+                                                   const Eigen::Matrix<double, 6, 6>& covariance) {
+  // T^-1 = (R^T, -R^T t). With R <- exp(w) R, t <- t + v on T, the inverse moves by
+  // w' = -R^T w and v' = -R^T v - R^T [t]x w (first order).
+  const Eigen::Matrix3d Rt = T.linear().transpose();
+  const Eigen::Vector3d t = T.translation();
+  Eigen::Matrix3d t_cross;
+  t_cross << 0.0, -t.z(), t.y(), t.z(), 0.0, -t.x(), -t.y(), t.x(), 0.0;
+  Matrix6d jacobian = Matrix6d::Zero();
+  jacobian.topLeftCorner<3, 3>() = -Rt;
+  jacobian.topRightCorner<3, 3>() = -Rt * t_cross;
+  jacobian.bottomRightCorner<3, 3>() = -Rt;
+  return jacobian * covariance * jacobian.transpose();
+}
+
 }  // namespace pda_registration

@@ -12,6 +12,7 @@
 #include <Eigen/Geometry>
 #include <vector>
 
+#include "pda_registration/core/associations.hpp"
 #include "pda_registration/core/candidate_sets.hpp"
 #include "pda_registration/core/point_list.hpp"
 
@@ -42,6 +43,12 @@ WeightedCorrespondences computeWeightedCorrespondences(
     const PointList& source, const CandidateSets& candidates, const PointList& normals,
     double inverse_kappa, const Eigen::Isometry3d& T_target_source, double nu, double sigma_squared,
     int threads);
+
+/// The per-candidate posteriors at T, for inspection (same model as the E-step).
+Associations computeAssociations(const PointList& source, const CandidateSets& candidates,
+                                 const PointList& normals, double inverse_kappa,
+                                 const Eigen::Isometry3d& T_target_source, double nu,
+                                 double sigma_squared);
 
 /// The weighted objective sum_jk rho_jk |y_k - T x_j|^2_M at T, from the reduced form.
 double weightedObjective(const WeightedCorrespondences& correspondences,

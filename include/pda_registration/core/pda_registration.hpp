@@ -11,6 +11,7 @@
 #include <Eigen/Geometry>
 #include <memory>
 
+#include "pda_registration/core/associations.hpp"
 #include "pda_registration/core/point_list.hpp"
 #include "pda_registration/core/registration_parameters.hpp"
 #include "pda_registration/core/registration_result.hpp"
@@ -38,15 +39,19 @@ class PdaRegistration {
   std::shared_ptr<const TargetIndex> target() const { return target_index_; }
   size_t targetPointsDropped() const { return target_dropped_; }
 
-  /// Aligns `source` to the target starting from T_target_source_initial.
+  /// Aligns `source` to the target starting from T_target_source_initial. When `associations`
+  /// is given, it receives the final weighted associations (empty when the alignment could not
+  /// run at all).
   RegistrationResult align(const PointList& source,
-                           const Eigen::Isometry3d& T_target_source_initial) const;
+                           const Eigen::Isometry3d& T_target_source_initial,
+                           Associations* associations = nullptr) const;
 
  private:
   void rebuildIndex();
   void rebuildNormals();
   RegistrationResult alignUnchecked(const PointList& source,
-                                    const Eigen::Isometry3d& T_target_source_initial) const;
+                                    const Eigen::Isometry3d& T_target_source_initial,
+                                    Associations* associations) const;
 
   RegistrationParameters parameters_;
   PointList raw_target_;  // kept so a new target_voxel_size can re-index without a new cloud

@@ -15,4 +15,9 @@ bool computePoseCovariance(const WeightedCorrespondences& correspondences,
                            const Eigen::Isometry3d& T_target_source, double sigma_squared,
                            Eigen::Matrix<double, 6, 6>* covariance);
 
+/// The covariance of T^-1 given the covariance of T (same convention, expressed for the inverse
+/// transform's own parent frame): the first-order propagation through inversion.
+Eigen::Matrix<double, 6, 6> invertedPoseCovariance(const Eigen::Isometry3d& T,
+                                                   const Eigen::Matrix<double, 6, 6>& covariance);
+
 }  // namespace pda_registration

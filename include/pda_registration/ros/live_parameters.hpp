@@ -1,0 +1,21 @@
+#pragma once
+// The run-time tunable parameters: one dynamic_reconfigure config mapped onto the core's
+// structs. Applied by the worker at the start of each alignment.
+
+#include <pda_registration/PdaRegistrationConfig.h>
+
+#include "pda_registration/core/alignment_gate.hpp"
+#include "pda_registration/core/registration_parameters.hpp"
+
+namespace pda_registration {
+
+struct LiveParameters {
+  RegistrationParameters registration;
+  AcceptanceThresholds acceptance;
+  double min_interval = 0.0;  ///< [s]
+  size_t max_markers = 20000;
+};
+
+LiveParameters liveParametersFrom(const PdaRegistrationConfig& config);
+
+}  // namespace pda_registration

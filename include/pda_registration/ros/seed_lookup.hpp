@@ -1,0 +1,26 @@
+#pragma once
+// Where an alignment starts: tf's dense <- sparse transform at the sparse cloud's stamp (waiting
+// up to the timeout), else the latest tf has, else ~initial_transform, else nothing.
+
+#include <tf2_ros/buffer.h>
+
+#include <Eigen/Geometry>
+#include <string>
+
+namespace pda_registration {
+
+enum class SeedSource { kTfAtStamp, kTfLatest, kInitialTransform, kNone };
+
+const char* toString(SeedSource source);
+
+struct Seed {
+  Eigen::Isometry3d T_dense_sparse = Eigen::Isometry3d::Identity();
+  SeedSource source = SeedSource::kNone;
+  std::string detail;  ///< tf's error when it could not help
+};
+
+Seed lookupSeed(const tf2_ros::Buffer& buffer, const std::string& dense_frame,
+                const std::string& sparse_frame, const ros::Time& stamp,
+                const ros::Duration& timeout, const Eigen::Isometry3d* initial_transform);
+
+}  // namespace pda_registration

@@ -1,0 +1,37 @@
+#include "pda_registration/ros/live_parameters.hpp"
+
+#include <cmath>
+#include <limits>
+
+namespace pda_registration {
+
+LiveParameters liveParametersFrom(const PdaRegistrationConfig& c) {
+  LiveParameters live;
+  RegistrationParameters& p = live.registration;
+  p.k = c.k;
+  p.radius = c.radius;
+  p.nu = c.gaussian ? std::numeric_limits<double>::infinity() : c.nu;
+  parseSigmaMode(c.sigma_mode, &p.sigma_mode);  // the .cfg enum only offers valid names
+  p.fixed_sigma = c.fixed_sigma;
+  p.surface_anisotropy = c.surface_anisotropy;
+  p.normal_voxel_size = c.normal_voxel_size;
+  p.max_runs = c.runs;
+  p.max_em_iterations = c.em_iterations;
+  p.coarse_stride = c.coarse_stride;
+  p.translation_epsilon = c.translation_epsilon;
+  p.rotation_epsilon = c.rotation_epsilon;
+  parseSolver(c.solver, &p.solver);
+  p.solver_max_iterations = c.solver_iterations;
+  p.source_voxel_size = c.source_voxel_size;
+  p.target_voxel_size = c.target_voxel_size;
+  p.min_correspondences = c.min_correspondences;
+  p.threads = c.threads;
+  live.acceptance.min_inlier_fraction = c.min_inlier_fraction;
+  live.acceptance.max_correction_translation = c.max_correction_translation;
+  live.acceptance.max_correction_rotation = c.max_correction_rotation_deg * M_PI / 180.0;
+  live.min_interval = c.min_interval;
+  live.max_markers = static_cast<size_t>(std::max(c.max_markers, 0));
+  return live;
+}
+
+}  // namespace pda_registration

@@ -1,0 +1,398 @@
+#include "pda_registration/ros/map_alignment_nodelet.hpp"
+
+#include <tf2_eigen/tf2_eigen.h>
+
+#include <chrono>
+#include <map>
+#include <pluginlib/class_list_macros.hpp>
+#include <sstream>
+
+#include "pda_registration/core/alignment_gate.hpp"
+#include "pda_registration/core/pose_covariance.hpp"
+#include "pda_registration/ros/point_cloud_conversion.hpp"
+
+namespace pda_registration {
+namespace {
+
+// A WARN per kind of problem at most every few seconds, so a bad stream cannot flood the log
+// while different problems still each get their line.
+bool shouldLog(const std::string& kind) {
+  static std::mutex mutex;
+  static std::map<std::string, ros::WallTime> last_logged;
+  std::lock_guard<std::mutex> lock(mutex);
+  const ros::WallTime now = ros::WallTime::now();
+  auto it = last_logged.find(kind);
+  if (it != last_logged.end() && (now - it->second).toSec() < 5.0) return false;
+  last_logged[kind] = now;
+  return true;
+}
+
+std::string describe(const sensor_msgs::PointCloud2& cloud, const std::string& topic) {
+  std::ostringstream out;
+  out << topic << " (frame '" << cloud.header.frame_id << "', stamp " << cloud.header.stamp << ", "
+      << cloud.width << "x" << cloud.height << ")";
+  return out.str();
+}
+
+}  // namespace
+
+MapAlignmentNodelet::~MapAlignmentNodelet() {
+  queue_.stop();
+  if (worker_.joinable()) worker_.join();
+}
+
+void MapAlignmentNodelet::onInit() {
+  ros::NodeHandle& node = getNodeHandle();
+  ros::NodeHandle& private_node = getPrivateNodeHandle();
+
+  diagnostics_ = std::make_unique<diagnostic_updater::Updater>(node, private_node);
+  diagnostics_->setHardwareID(getName());
+  diagnostics_->add("alignment", this, &MapAlignmentNodelet::diagnose);
+  diagnostics_timer_ = node.createTimer(ros::Duration(1.0),
+                                        [this](const ros::TimerEvent&) { diagnostics_->update(); });
+
+  settings_ok_ = readNodeSettings(private_node, &settings_, &settings_error_);
+  if (!settings_ok_) {
+    // A bad static parameter disables this nodelet, never the manager it shares.
+    NODELET_ERROR("not started: %s", settings_error_.c_str());
+    return;
+  }
+
+  tf_buffer_ = std::make_unique<tf2_ros::Buffer>();
+  tf_listener_ = std::make_unique<tf2_ros::TransformListener>(*tf_buffer_, node);
+  publisher_ = std::make_unique<AlignmentPublisher>(private_node);
+  reconfigure_server_ = std::make_unique<dynamic_reconfigure::Server<PdaRegistrationConfig>>(
+      reconfigure_mutex_, private_node);
+  reconfigure_server_->setCallback(boost::bind(&MapAlignmentNodelet::reconfigure, this,
+                                               boost::placeholders::_1, boost::placeholders::_2));
+
+  worker_ = std::thread(&MapAlignmentNodelet::workerLoop, this);
+  dense_subscriber_ = node.subscribe("dense_cloud", 2, &MapAlignmentNodelet::denseCallback, this);
+  sparse_subscriber_ =
+      node.subscribe("sparse_cloud", 5, &MapAlignmentNodelet::sparseCallback, this);
+  if (settings_.publish_tf && settings_.tf_publish_rate > 0.0) {
+    tf_timer_ = node.createTimer(ros::Duration(1.0 / settings_.tf_publish_rate),
+                                 &MapAlignmentNodelet::republishTf, this);
+  }
+  NODELET_INFO("aligning %s (target: %s cloud) with seeds from tf%s",
+               sparse_subscriber_.getTopic().c_str(),
+               settings_.dense_is_target ? "dense" : "sparse",
+               settings_.has_initial_transform ? " or ~initial_transform" : "");
+}
+
+void MapAlignmentNodelet::reconfigure(PdaRegistrationConfig& config, uint32_t) {
+  const LiveParameters live = liveParametersFrom(config);
+  const std::string problem = validateParameters(live.registration);
+  if (!problem.empty()) {
+    // The .cfg limits make this rare (e.g. closed_form with surface_anisotropy > 1): keep the
+    // previous parameters and say why.
+    NODELET_WARN("reconfigure refused: %s", problem.c_str());
+    return;
+  }
+  std::lock_guard<std::mutex> lock(live_mutex_);
+  live_ = live;
+}
+
+void MapAlignmentNodelet::denseCallback(const sensor_msgs::PointCloud2ConstPtr& cloud) {
+  {
+    std::lock_guard<std::mutex> lock(status_mutex_);
+    ++status_.dense_received;
+  }
+  queue_.putDense(cloud);  // maps are slow; a replaced pending map needs no counting
+}
+
+void MapAlignmentNodelet::sparseCallback(const sensor_msgs::PointCloud2ConstPtr& cloud) {
+  double min_interval;
+  {
+    std::lock_guard<std::mutex> lock(live_mutex_);
+    min_interval = live_.min_interval;
+  }
+  const ros::Time now = ros::Time::now();
+  std::lock_guard<std::mutex> lock(status_mutex_);
+  ++status_.sparse_received;
+  if (now < last_sparse_accepted_) last_sparse_accepted_ = ros::Time();  // clock jumped back
+  if (min_interval > 0.0 && !last_sparse_accepted_.isZero() &&
+      (now - last_sparse_accepted_).toSec() < min_interval) {
+    ++status_.dropped_throttled;
+    return;
+  }
+  last_sparse_accepted_ = now;
+  if (queue_.putSparse({cloud, ros::WallTime::now()})) ++status_.dropped_stale;
+}
+
+void MapAlignmentNodelet::workerLoop() {
+  sensor_msgs::PointCloud2ConstPtr dense;
+  SparseJob sparse;
+  bool has_dense = false, has_sparse = false;
+  while (queue_.waitAndTake(&dense, &has_dense, &sparse, &has_sparse)) {
+    try {
+      if (has_dense) updateDenseCloud(dense);
+      if (has_sparse) alignSparseCloud(sparse);
+    } catch (const std::exception& error) {
+      reportProblem("internal", std::string("internal error: ") + error.what(), false);
+    }
+  }
+}
+
+bool MapAlignmentNodelet::checkFrame(const sensor_msgs::PointCloud2& cloud,
+                                     const std::string& expected, const char* kind) {
+  if (cloud.header.frame_id.empty()) {
+    reportProblem("frame", std::string(kind) + " cloud has an empty frame_id", true);
+    return false;
+  }
+  if (!expected.empty() && cloud.header.frame_id != expected) {
+    reportProblem("frame",
+                  std::string(kind) + " cloud is in frame '" + cloud.header.frame_id +
+                      "' but ~expected_" + kind + "_frame is '" + expected + "'",
+                  true);
+    return false;
+  }
+  return true;
+}
+
+void MapAlignmentNodelet::updateDenseCloud(const sensor_msgs::PointCloud2ConstPtr& cloud) {
+  if (!checkFrame(*cloud, settings_.expected_dense_frame, "dense")) return;
+  CloudConversion converted = fromPointCloud2(*cloud);
+  if (!converted.ok()) {
+    reportProblem("dense " + converted.error.substr(0, 12),
+                  "dense cloud " + describe(*cloud, dense_subscriber_.getTopic()) +
+                      " refused: " + converted.error + "; keeping the previous map",
+                  true);
+    return;
+  }
+  const auto start = std::chrono::steady_clock::now();
+  if (settings_.dense_is_target) {
+    {
+      std::lock_guard<std::mutex> lock(live_mutex_);
+      registration_.setParameters(live_.registration);
+    }
+    registration_.setTarget(std::move(converted.points));
+  } else {
+    dense_points_ = std::move(converted.points);
+  }
+  dense_frame_ = cloud->header.frame_id;
+  have_dense_ = true;
+  NODELET_INFO(
+      "dense map from %s: %zu points (%zu non-finite dropped), ready in %.0f ms",
+      dense_subscriber_.getTopic().c_str(),
+      settings_.dense_is_target ? registration_.target()->size() : dense_points_.size(),
+      converted.non_finite,
+      std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count());
+}
+
+void MapAlignmentNodelet::alignSparseCloud(const SparseJob& job) {
+  const sensor_msgs::PointCloud2& cloud = *job.cloud;
+  if (!checkFrame(cloud, settings_.expected_sparse_frame, "sparse")) return;
+  CloudConversion sparse = fromPointCloud2(cloud);
+  if (!sparse.ok()) {
+    reportProblem("sparse " + sparse.error.substr(0, 12),
+                  "sparse cloud " + describe(cloud, sparse_subscriber_.getTopic()) +
+                      " refused: " + sparse.error,
+                  true);
+    return;
+  }
+  if (!have_dense_) {
+    reportProblem(
+        "no dense",
+        "no dense cloud received yet on " + dense_subscriber_.getTopic() + "; sparse cloud skipped",
+        false);
+    return;
+  }
+  LiveParameters live;
+  {
+    std::lock_guard<std::mutex> lock(live_mutex_);
+    live = live_;
+  }
+  const std::string& sparse_frame = cloud.header.frame_id;
+  const Seed seed =
+      lookupSeed(*tf_buffer_, dense_frame_, sparse_frame, cloud.header.stamp,
+                 ros::Duration(settings_.tf_timeout),
+                 settings_.has_initial_transform ? &settings_.initial_transform : nullptr);
+  if (seed.source == SeedSource::kNone) {
+    {
+      std::lock_guard<std::mutex> lock(status_mutex_);
+      ++status_.missing_seed;
+    }
+    reportProblem("no seed " + sparse_frame,
+                  "no seed for " + describe(cloud, sparse_subscriber_.getTopic()) +
+                      ": tf has no transform from '" + sparse_frame + "' to '" + dense_frame_ +
+                      "' (" + seed.detail + ") and ~initial_transform is not set",
+                  true);
+    return;
+  }
+  {
+    std::lock_guard<std::mutex> lock(status_mutex_);
+    if (seed.source != status_.last_seed) {
+      NODELET_INFO("seeding from %s", toString(seed.source));
+    }
+    status_.last_seed = seed.source;
+  }
+
+  // The core aligns source to target; the output is always dense <- sparse.
+  registration_.setParameters(live.registration);
+  const bool want_markers = publisher_->hasAssociationSubscribers() && live.max_markers > 0;
+  Associations associations;
+  RegistrationResult result;
+  Eigen::Isometry3d seed_target_source;
+  const PointList* source_points;
+  if (settings_.dense_is_target) {
+    seed_target_source = seed.T_dense_sparse;
+    source_points = &sparse.points;
+  } else {
+    registration_.setTarget(sparse.points);
+    seed_target_source = seed.T_dense_sparse.inverse();
+    source_points = &dense_points_;
+  }
+  result = registration_.align(*source_points, seed_target_source,
+                               want_markers ? &associations : nullptr);
+  const Verdict verdict = judgeAlignment(result, seed_target_source, live.acceptance);
+  {
+    std::lock_guard<std::mutex> lock(status_mutex_);
+    ++status_.aligned;
+    status_.have_result = true;
+    status_.last_result = result;
+    status_.last_accepted = verdict.accepted;
+    if (verdict.accepted)
+      ++status_.accepted;
+    else
+      ++status_.rejected;
+  }
+  if (!verdict.accepted) {
+    reportProblem("rejected",
+                  "alignment rejected, keeping the last good estimate: " + verdict.reason, false);
+    return;
+  }
+
+  AlignmentOutput output;
+  output.stamp = cloud.header.stamp;
+  output.dense_frame = dense_frame_;
+  output.sparse_frame = sparse_frame;
+  output.T_dense_sparse =
+      settings_.dense_is_target ? result.T_target_source : result.T_target_source.inverse();
+  output.covariance = settings_.dense_is_target
+                          ? result.covariance
+                          : invertedPoseCovariance(result.T_target_source, result.covariance);
+  output.target_frame = settings_.dense_is_target ? dense_frame_ : sparse_frame;
+  PointList aligned;
+  if (publisher_->hasAlignedCloudSubscribers()) {
+    aligned.reserve(source_points->size());
+    for (const Point& p : *source_points) aligned.push_back(result.T_target_source * p);
+    output.aligned = &aligned;
+  }
+  output.associations = want_markers ? &associations : nullptr;
+  output.max_markers = live.max_markers;
+  output.marker_line_width = settings_.marker_line_width;
+  publisher_->publish(output);
+  {
+    std::lock_guard<std::mutex> lock(estimate_mutex_);
+    have_estimate_ = true;
+    estimate_ = output.T_dense_sparse;
+    estimate_dense_frame_ = dense_frame_;
+    estimate_sparse_frame_ = sparse_frame;
+  }
+  if (settings_.publish_tf) broadcastEstimate(output.T_dense_sparse, cloud.header.stamp);
+  const double latency_ms = (ros::WallTime::now() - job.received).toSec() * 1000.0;
+  {
+    std::lock_guard<std::mutex> lock(status_mutex_);
+    status_.last_latency_ms = latency_ms;
+  }
+  NODELET_DEBUG("aligned in %.0f ms (%d runs, sigma %.4f, inliers %.2f), latency %.0f ms",
+                result.time_ms, result.runs, result.sigma, result.inlier_fraction, latency_ms);
+}
+
+void MapAlignmentNodelet::broadcastEstimate(const Eigen::Isometry3d& T_dense_sparse,
+                                            const ros::Time& stamp) {
+  std::string dense, sparse;
+  {
+    std::lock_guard<std::mutex> lock(estimate_mutex_);
+    dense = estimate_dense_frame_;
+    sparse = estimate_sparse_frame_;
+  }
+  const std::string parent = settings_.tf_parent_frame.empty() ? dense : settings_.tf_parent_frame;
+  const std::string default_child = sparse + "_aligned";
+  const std::string child =
+      settings_.tf_child_frame.empty() ? default_child : settings_.tf_child_frame;
+  // parent <- child = (parent <- dense) (dense <- sparse) (sparse <- child): the corrected pose
+  // re-expressed on the configured edge, e.g. map -> odom while odometry owns odom -> sensor.
+  Eigen::Isometry3d T = T_dense_sparse;
+  try {
+    if (parent != dense) {
+      T = tf2::transformToEigen(tf_buffer_->lookupTransform(parent, dense, ros::Time(0))) * T;
+    }
+    if (child != sparse && child != default_child) {
+      T = T * tf2::transformToEigen(tf_buffer_->lookupTransform(sparse, child, ros::Time(0)));
+    }
+  } catch (const tf2::TransformException& error) {
+    reportProblem("tf edge",
+                  std::string("cannot express the estimate as ") + parent + " -> " + child + ": " +
+                      error.what(),
+                  false);
+    return;
+  }
+  geometry_msgs::TransformStamped transform = tf2::eigenToTransform(T);
+  transform.header.stamp = stamp;
+  transform.header.frame_id = parent;
+  transform.child_frame_id = child;
+  publisher_->broadcast(transform);
+}
+
+void MapAlignmentNodelet::republishTf(const ros::TimerEvent&) {
+  Eigen::Isometry3d estimate;
+  {
+    std::lock_guard<std::mutex> lock(estimate_mutex_);
+    if (!have_estimate_) return;
+    estimate = estimate_;
+  }
+  const ros::Time now = ros::Time::now();
+  if (!now.isZero()) broadcastEstimate(estimate, now);
+}
+
+void MapAlignmentNodelet::reportProblem(const std::string& kind, const std::string& problem,
+                                        bool input_error) {
+  {
+    std::lock_guard<std::mutex> lock(status_mutex_);
+    if (input_error) ++status_.input_errors;
+    status_.last_problem = problem;
+    status_.last_problem_time = ros::Time::now();
+    status_.last_accepted = false;
+  }
+  if (shouldLog(kind)) NODELET_WARN("%s", problem.c_str());
+}
+
+void MapAlignmentNodelet::diagnose(diagnostic_updater::DiagnosticStatusWrapper& status) {
+  if (!settings_ok_) {
+    status.summary(diagnostic_msgs::DiagnosticStatus::ERROR, "not started: " + settings_error_);
+    return;
+  }
+  std::lock_guard<std::mutex> lock(status_mutex_);
+  const Status& s = status_;
+  if (s.last_accepted) {
+    status.summary(diagnostic_msgs::DiagnosticStatus::OK, "aligned");
+  } else if (!s.last_problem.empty()) {
+    status.summary(diagnostic_msgs::DiagnosticStatus::WARN, s.last_problem);
+  } else {
+    status.summary(diagnostic_msgs::DiagnosticStatus::WARN, "waiting for dense and sparse clouds");
+  }
+  const RegistrationResult& r = s.last_result;
+  status.add("converged", s.have_result && r.converged);
+  status.add("sigma [m]", r.sigma);
+  status.add("inlier fraction", r.inlier_fraction);
+  status.add("runs", r.runs);
+  status.add("alignment time [ms]", r.time_ms);
+  status.add("latency [ms]", s.last_latency_ms);
+  status.add("seed source", toString(s.last_seed));
+  status.add("dense clouds received", s.dense_received);
+  status.add("sparse clouds received", s.sparse_received);
+  status.add("alignments", s.aligned);
+  status.add("accepted", s.accepted);
+  status.add("rejected results", s.rejected);
+  status.add("dropped stale inputs", s.dropped_stale);
+  status.add("dropped by min_interval", s.dropped_throttled);
+  status.add("input errors", s.input_errors);
+  status.add("missing seed", s.missing_seed);
+  status.add("last problem", s.last_problem);
+}
+
+}  // namespace pda_registration
+
+PLUGINLIB_EXPORT_CLASS(pda_registration::MapAlignmentNodelet, nodelet::Nodelet)

@@ -1,0 +1,130 @@
+#include "pda_registration/ros/point_cloud_conversion.hpp"
+
+#include <cmath>
+#include <cstring>
+#include <sstream>
+
+namespace pda_registration {
+namespace {
+
+bool hostIsBigEndian() {
+  const uint16_t probe = 1;
+  uint8_t first = 0;
+  std::memcpy(&first, &probe, 1);
+  return first == 0;
+}
+
+struct FieldLayout {
+  uint32_t offset = 0;
+  bool is_double = false;
+};
+
+bool findCoordinate(const sensor_msgs::PointCloud2& m, const std::string& name, FieldLayout* out,
+                    std::string* error) {
+  for (const sensor_msgs::PointField& f : m.fields) {
+    if (f.name != name) continue;
+    if (f.datatype != sensor_msgs::PointField::FLOAT32 &&
+        f.datatype != sensor_msgs::PointField::FLOAT64) {
+      *error = "field '" + name + "' is not FLOAT32 or FLOAT64";
+      return false;
+    }
+    out->is_double = f.datatype == sensor_msgs::PointField::FLOAT64;
+    out->offset = f.offset;
+    const uint64_t end = static_cast<uint64_t>(f.offset) + (out->is_double ? 8u : 4u);
+    if (end > m.point_step) {
+      *error = "field '" + name + "' lies outside point_step";
+      return false;
+    }
+    return true;
+  }
+  *error = "no '" + name + "' field (the cloud needs x, y and z)";
+  return false;
+}
+
+double readCoordinate(const uint8_t* point, const FieldLayout& field) {
+  if (field.is_double) {
+    double v;
+    std::memcpy(&v, point + field.offset, sizeof v);
+    return v;
+  }
+  float v;
+  std::memcpy(&v, point + field.offset, sizeof v);
+  return v;
+}
+
+}  // namespace
+
+CloudConversion fromPointCloud2(const sensor_msgs::PointCloud2& m) {
+  CloudConversion out;
+  const uint64_t count = static_cast<uint64_t>(m.width) * m.height;
+  if (count == 0) {
+    out.error = "empty cloud (width x height = 0)";
+    return out;
+  }
+  if (m.is_bigendian != hostIsBigEndian()) {
+    out.error = "byte order differs from this machine's";
+    return out;
+  }
+  FieldLayout x, y, z;
+  if (!findCoordinate(m, "x", &x, &out.error) || !findCoordinate(m, "y", &y, &out.error) ||
+      !findCoordinate(m, "z", &z, &out.error)) {
+    return out;
+  }
+  const uint64_t row_bytes = static_cast<uint64_t>(m.width) * m.point_step;
+  if (m.point_step == 0 || m.row_step < row_bytes ||
+      static_cast<uint64_t>(m.row_step) * m.height > m.data.size()) {
+    std::ostringstream error;
+    error << "data holds " << m.data.size() << " bytes but width x height x point_step needs "
+          << count * m.point_step << " (row_step " << m.row_step << ")";
+    out.error = error.str();
+    return out;
+  }
+  out.points.reserve(count);
+  for (uint32_t row = 0; row < m.height; ++row) {
+    const uint8_t* row_start = m.data.data() + static_cast<size_t>(row) * m.row_step;
+    for (uint32_t column = 0; column < m.width; ++column) {
+      const uint8_t* point = row_start + static_cast<size_t>(column) * m.point_step;
+      const Point p(readCoordinate(point, x), readCoordinate(point, y), readCoordinate(point, z));
+      if (p.allFinite()) {
+        out.points.push_back(p);
+      } else {
+        ++out.non_finite;
+      }
+    }
+  }
+  if (out.points.empty()) {
+    std::ostringstream error;
+    error << "all " << out.non_finite << " points are NaN or Inf";
+    out.error = error.str();
+  }
+  return out;
+}
+
+sensor_msgs::PointCloud2 toPointCloud2(const PointList& points, const std_msgs::Header& header) {
+  sensor_msgs::PointCloud2 m;
+  m.header = header;
+  m.height = 1;
+  m.width = static_cast<uint32_t>(points.size());
+  m.is_bigendian = hostIsBigEndian();
+  m.is_dense = true;
+  m.point_step = 12;
+  m.row_step = m.point_step * m.width;
+  const char* names[3] = {"x", "y", "z"};
+  for (uint32_t i = 0; i < 3; ++i) {
+    sensor_msgs::PointField field;
+    field.name = names[i];
+    field.offset = 4 * i;
+    field.datatype = sensor_msgs::PointField::FLOAT32;
+    field.count = 1;
+    m.fields.push_back(field);
+  }
+  m.data.resize(static_cast<size_t>(m.row_step));
+  for (size_t i = 0; i < points.size(); ++i) {
+    const float xyz[3] = {static_cast<float>(points[i].x()), static_cast<float>(points[i].y()),
+                          static_cast<float>(points[i].z())};
+    std::memcpy(&m.data[i * 12], xyz, sizeof xyz);
+  }
+  return m;
+}
+
+}  // namespace pda_registration

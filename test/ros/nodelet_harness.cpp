@@ -1,0 +1,175 @@
+#include "nodelet_harness.hpp"
+
+#include <tf2_eigen/tf2_eigen.h>
+
+#include <map>
+#include <tuple>
+
+#include "pda_registration/ros/point_cloud_conversion.hpp"
+
+namespace pda_registration {
+namespace testing_support {
+
+NodeletHarness::NodeletHarness(const std::string& nodelet_name)
+    : dense_(node_.advertise<sensor_msgs::PointCloud2>("dense_cloud", 1, true)),
+      sparse_(node_.advertise<sensor_msgs::PointCloud2>("sparse_cloud", 5)),
+      tf_listener_(tf_buffer_) {
+  const std::string prefix = "/" + nodelet_name + "/";
+  transform_ = node_.subscribe<geometry_msgs::TransformStamped>(
+      prefix + "transform", 10, [this](const geometry_msgs::TransformStamped::ConstPtr& m) {
+        std::lock_guard<std::mutex> lock(mutex_);
+        transforms_.push_back(*m);
+      });
+  pose_ = node_.subscribe<geometry_msgs::PoseWithCovarianceStamped>(
+      prefix + "pose", 10, [this](const geometry_msgs::PoseWithCovarianceStamped::ConstPtr& m) {
+        std::lock_guard<std::mutex> lock(mutex_);
+        poses_.push_back(*m);
+      });
+  markers_ = node_.subscribe<visualization_msgs::MarkerArray>(
+      prefix + "associations", 2, [this](const visualization_msgs::MarkerArray::ConstPtr& m) {
+        std::lock_guard<std::mutex> lock(mutex_);
+        markers_received_.push_back(*m);
+      });
+  rosout_ = node_.subscribe<rosgraph_msgs::Log>("/rosout", 100,
+                                                [this](const rosgraph_msgs::Log::ConstPtr& m) {
+                                                  if (m->level >= rosgraph_msgs::Log::WARN) {
+                                                    std::lock_guard<std::mutex> lock(mutex_);
+                                                    warnings_.push_back(m->msg);
+                                                  }
+                                                });
+}
+
+void NodeletHarness::publishDense(const PointList& points, const std::string& frame) {
+  std_msgs::Header header;
+  header.frame_id = frame;
+  header.stamp = ros::Time::now();
+  dense_.publish(toPointCloud2(points, header));
+}
+
+void NodeletHarness::publishSparse(const PointList& points, const std::string& frame) {
+  std_msgs::Header header;
+  header.frame_id = frame;
+  header.stamp = ros::Time::now();
+  sparse_.publish(toPointCloud2(points, header));
+}
+
+void NodeletHarness::publishRaw(const sensor_msgs::PointCloud2& cloud, bool dense) {
+  (dense ? dense_ : sparse_).publish(cloud);
+}
+
+void NodeletHarness::publishSeed(const Eigen::Isometry3d& T, const std::string& dense_frame,
+                                 const std::string& sparse_frame) {
+  geometry_msgs::TransformStamped seed = tf2::eigenToTransform(T);
+  seed.header.stamp = ros::Time::now();
+  seed.header.frame_id = dense_frame;
+  seed.child_frame_id = sparse_frame;
+  static_broadcaster_.sendTransform(seed);
+}
+
+bool NodeletHarness::waitFor(const std::function<bool()>& condition, double timeout_s) {
+  const ros::WallTime end = ros::WallTime::now() + ros::WallDuration(timeout_s);
+  while (ros::ok() && ros::WallTime::now() < end) {
+    {
+      std::lock_guard<std::mutex> lock(mutex_);
+      if (condition()) return true;
+    }
+    ros::WallDuration(0.02).sleep();
+  }
+  std::lock_guard<std::mutex> lock(mutex_);
+  return condition();
+}
+
+bool NodeletHarness::waitForNextTransform(double timeout_s) {
+  const size_t before = transformCount();
+  return waitFor([this, before] { return transforms_.size() > before; }, timeout_s);
+}
+
+bool NodeletHarness::waitForWarnContaining(const std::string& text, double timeout_s) {
+  return waitFor(
+      [this, &text] {
+        for (const std::string& w : warnings_) {
+          if (w.find(text) != std::string::npos) return true;
+        }
+        return false;
+      },
+      timeout_s);
+}
+
+bool NodeletHarness::waitForConnections(double timeout_s) {
+  const ros::WallTime end = ros::WallTime::now() + ros::WallDuration(timeout_s);
+  while (ros::ok() && ros::WallTime::now() < end) {
+    if (dense_.getNumSubscribers() > 0 && sparse_.getNumSubscribers() > 0 &&
+        transform_.getNumPublishers() > 0) {
+      return true;
+    }
+    ros::WallDuration(0.05).sleep();
+  }
+  ROS_ERROR("connections: dense %u, sparse %u subscribers; ~transform %u publishers",
+            dense_.getNumSubscribers(), sparse_.getNumSubscribers(), transform_.getNumPublishers());
+  return false;
+}
+
+bool NodeletHarness::waitForMarkersBeyond(size_t count, double timeout_s) {
+  return waitFor([this, count] { return markers_received_.size() > count; }, timeout_s);
+}
+
+bool NodeletHarness::waitForPosesBeyond(size_t count, double timeout_s) {
+  return waitFor([this, count] { return poses_.size() > count; }, timeout_s);
+}
+
+size_t NodeletHarness::transformCount() {
+  std::lock_guard<std::mutex> lock(mutex_);
+  return transforms_.size();
+}
+
+geometry_msgs::TransformStamped NodeletHarness::lastTransform() {
+  std::lock_guard<std::mutex> lock(mutex_);
+  return transforms_.empty() ? geometry_msgs::TransformStamped() : transforms_.back();
+}
+
+geometry_msgs::PoseWithCovarianceStamped NodeletHarness::lastPose() {
+  std::lock_guard<std::mutex> lock(mutex_);
+  return poses_.empty() ? geometry_msgs::PoseWithCovarianceStamped() : poses_.back();
+}
+
+size_t NodeletHarness::markerCount() {
+  std::lock_guard<std::mutex> lock(mutex_);
+  return markers_received_.size();
+}
+
+visualization_msgs::MarkerArray NodeletHarness::lastMarkers() {
+  std::lock_guard<std::mutex> lock(mutex_);
+  return markers_received_.empty() ? visualization_msgs::MarkerArray() : markers_received_.back();
+}
+
+std::vector<std::string> NodeletHarness::warnings() {
+  std::lock_guard<std::mutex> lock(mutex_);
+  return warnings_;
+}
+
+Eigen::Isometry3d NodeletHarness::lookup(const std::string& parent, const std::string& child,
+                                         double timeout_s) {
+  return tf2::transformToEigen(
+      tf_buffer_.lookupTransform(parent, child, ros::Time(0), ros::Duration(timeout_s)));
+}
+
+MarkerGroups groupAssociationLines(const visualization_msgs::MarkerArray& markers) {
+  std::map<std::tuple<double, double, double>, std::pair<size_t, double>> groups;
+  for (const visualization_msgs::Marker& m : markers.markers) {
+    if (m.type != visualization_msgs::Marker::LINE_LIST) continue;
+    for (size_t i = 0; i + 1 < m.points.size(); i += 2) {
+      auto& g = groups[std::make_tuple(m.points[i].x, m.points[i].y, m.points[i].z)];
+      ++g.first;
+      g.second += m.colors[i].a;
+    }
+  }
+  MarkerGroups out;
+  for (const auto& g : groups) {
+    out.lines_per_point.push_back(g.second.first);
+    out.alpha_sum_per_point.push_back(g.second.second);
+  }
+  return out;
+}
+
+}  // namespace testing_support
+}  // namespace pda_registration

@@ -1,0 +1,82 @@
+#pragma once
+// Test-side companion of the map-alignment nodelet for rostest: publishes clouds and seeds the
+// way a robot stack would, records everything the nodelet publishes (and its WARNs on /rosout),
+// and waits for it with timeouts.
+
+#include <geometry_msgs/PoseWithCovarianceStamped.h>
+#include <geometry_msgs/TransformStamped.h>
+#include <ros/ros.h>
+#include <rosgraph_msgs/Log.h>
+#include <sensor_msgs/PointCloud2.h>
+#include <tf2_ros/buffer.h>
+#include <tf2_ros/static_transform_broadcaster.h>
+#include <tf2_ros/transform_listener.h>
+#include <visualization_msgs/MarkerArray.h>
+
+#include <Eigen/Geometry>
+#include <functional>
+#include <mutex>
+#include <string>
+#include <vector>
+
+#include "pda_registration/core/point_list.hpp"
+
+namespace pda_registration {
+namespace testing_support {
+
+class NodeletHarness {
+ public:
+  /// `nodelet_name` is the nodelet's node name (its private topics live below it).
+  explicit NodeletHarness(const std::string& nodelet_name);
+
+  void publishDense(const PointList& points, const std::string& frame);
+  void publishSparse(const PointList& points, const std::string& frame);
+  void publishRaw(const sensor_msgs::PointCloud2& cloud, bool dense);
+  /// Static tf dense_frame -> sparse_frame (the seed).
+  void publishSeed(const Eigen::Isometry3d& T_dense_sparse, const std::string& dense_frame,
+                   const std::string& sparse_frame);
+
+  /// Waits until `condition` holds (checked under the harness lock) or the timeout passes.
+  bool waitFor(const std::function<bool()>& condition, double timeout_s);
+  /// Waits for the (n+1)-th ~transform, n = transforms already received.
+  bool waitForNextTransform(double timeout_s);
+  bool waitForWarnContaining(const std::string& text, double timeout_s);
+  /// Waits until all publishers and subscribers are connected to the nodelet.
+  bool waitForConnections(double timeout_s);
+
+  /// Waits until more than `count` marker arrays (or poses) have been received.
+  bool waitForMarkersBeyond(size_t count, double timeout_s);
+  bool waitForPosesBeyond(size_t count, double timeout_s);
+
+  size_t transformCount();
+  geometry_msgs::TransformStamped lastTransform();
+  geometry_msgs::PoseWithCovarianceStamped lastPose();
+  size_t markerCount();
+  visualization_msgs::MarkerArray lastMarkers();
+  std::vector<std::string> warnings();
+  /// tf's transform between two frames right now (throws tf2::TransformException).
+  Eigen::Isometry3d lookup(const std::string& parent, const std::string& child, double timeout_s);
+
+ private:
+  ros::NodeHandle node_;
+  ros::Publisher dense_, sparse_;
+  ros::Subscriber transform_, pose_, markers_, rosout_;
+  tf2_ros::StaticTransformBroadcaster static_broadcaster_;
+  tf2_ros::Buffer tf_buffer_;
+  tf2_ros::TransformListener tf_listener_;
+  std::mutex mutex_;
+  std::vector<geometry_msgs::TransformStamped> transforms_;
+  std::vector<geometry_msgs::PoseWithCovarianceStamped> poses_;
+  std::vector<visualization_msgs::MarkerArray> markers_received_;
+  std::vector<std::string> warnings_;
+};
+
+/// Lines per source point and the alpha sum of each point's lines, grouped by line start.
+struct MarkerGroups {
+  std::vector<size_t> lines_per_point;
+  std::vector<double> alpha_sum_per_point;
+};
+MarkerGroups groupAssociationLines(const visualization_msgs::MarkerArray& markers);
+
+}  // namespace testing_support
+}  // namespace pda_registration
