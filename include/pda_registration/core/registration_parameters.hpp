@@ -35,7 +35,7 @@ struct RegistrationParameters {
   // --- EM loop inside one run (candidate sets fixed) ----------------------------------------
   int max_em_iterations = 5;
   // --- Multiple runs (candidate sets recomputed from the current estimate) ------------------
-  int max_runs = 30;  ///< 1 = the paper's single-run mode
+  int max_runs = 50;  ///< 1 = the paper's single-run mode
   /// Early runs use every coarse_stride-th source point until a run moves less than 10 epsilons;
   /// the final runs (and convergence) always use every point. 1 = always every point.
   int coarse_stride = 4;
