@@ -4,6 +4,7 @@
 // every trial. Exit 2 on bad arguments or unreadable data.
 
 #include <algorithm>
+#include <filesystem>
 #include <fstream>
 #include <iomanip>
 #include <iostream>
@@ -117,10 +118,14 @@ int main(int argc, char** argv) {
   }
   const std::string data = cl.text("data");
   std::vector<std::string> cases = split(cl.text("cases"), ',');
-  if (cases.empty()) {
-    for (const char* name : {"campus_hdl32", "factory_p64", "kinect_pairwise", "room_scan"}) {
-      if (std::ifstream(data + "/" + name + "/T_target_source.txt").good()) cases.push_back(name);
+  if (cases.empty()) {  // every sub-folder that holds a ground truth, in name order
+    std::error_code error;
+    for (const auto& entry : std::filesystem::directory_iterator(data, error)) {
+      if (std::filesystem::exists(entry.path() / "T_target_source.txt")) {
+        cases.push_back(entry.path().filename().string());
+      }
     }
+    std::sort(cases.begin(), cases.end());
   }
   if (cases.empty()) return fail("no cases found in '" + data + "'");
 

@@ -26,7 +26,8 @@ std::set<std::string> settingsFlagNames() {
           "anisotropy",
           "normal-voxel",
           "solver-iterations",
-          "coarse-stride"};
+          "coarse-stride",
+          "ndt-epsilon"};
 }
 
 std::string settingsFlagsHelp() {
@@ -64,7 +65,9 @@ std::string settingsFlagsHelp() {
        << p.min_correspondences << ")\n"
        << "  --max-iterations N      ICP/GICP/NDT iterations (" << b.max_iterations << ")\n"
        << "  --ndt-resolution R      NDT cell size [m] (" << b.ndt_resolution << ")\n"
-       << "  --ndt-step-size S       NDT step size [m] (" << b.ndt_step_size << ")\n";
+       << "  --ndt-step-size S       NDT step size [m] (" << b.ndt_step_size << ")\n"
+       << "  --ndt-epsilon E         NDT transformation epsilon (" << b.ndt_transformation_epsilon
+       << ")\n";
   return help.str();
 }
 
@@ -88,7 +91,8 @@ bool readSettingsFlags(CommandLine* cl, MethodSettings* settings) {
       !cl->number("anisotropy", &p.surface_anisotropy, 1.0, 1e12) ||
       !cl->number("normal-voxel", &p.normal_voxel_size, 1e-9, 1e6) ||
       !cl->integer("solver-iterations", &p.solver_max_iterations, 1, 1000) ||
-      !cl->integer("coarse-stride", &p.coarse_stride, 1, 1000)) {
+      !cl->integer("coarse-stride", &p.coarse_stride, 1, 1000) ||
+      !cl->number("ndt-epsilon", &b.ndt_transformation_epsilon, 0.0, 1e3)) {
     return false;
   }
   if (cl->has("solver") && !parseSolver(cl->text("solver"), &p.solver)) {
