@@ -1,0 +1,215 @@
+// The ROS layer's pure parts, without a roscore: PointCloud2 conversion of good and broken
+// messages, association markers, the newest-input mailbox, the acceptance gate and covariance
+// propagation through inversion.
+#include <gtest/gtest.h>
+
+#include <cstring>
+#include <limits>
+#include <thread>
+
+#include "pda_registration/core/alignment_gate.hpp"
+#include "pda_registration/core/pose_covariance.hpp"
+#include "pda_registration/core/pose_jacobian.hpp"
+#include "pda_registration/ros/association_markers.hpp"
+#include "pda_registration/ros/latest_input_queue.hpp"
+#include "pda_registration/ros/point_cloud_conversion.hpp"
+
+namespace pda_registration {
+namespace {
+
+PointList somePoints(size_t n) {
+  PointList points;
+  for (size_t i = 0; i < n; ++i) points.emplace_back(0.1 * i, -0.2 * i, 1.0 + 0.01 * i);
+  return points;
+}
+
+sensor_msgs::PointCloud2 cloudOf(const PointList& points) {
+  std_msgs::Header header;
+  header.frame_id = "map";
+  return toPointCloud2(points, header);
+}
+
+TEST(PointCloudConversion, RoundTripsFloat32) {
+  const PointList points = somePoints(50);
+  const CloudConversion back = fromPointCloud2(cloudOf(points));
+  ASSERT_TRUE(back.ok()) << back.error;
+  ASSERT_EQ(back.points.size(), 50u);
+  EXPECT_LT((back.points[49] - points[49]).norm(), 1e-6);
+}
+
+TEST(PointCloudConversion, ReadsFloat64OrganisedCloudsWithPaddingAndDropsNaN) {
+  sensor_msgs::PointCloud2 m;
+  m.height = 2;
+  m.width = 3;
+  m.point_step = 32;                         // x y z as doubles plus 8 bytes of something else
+  m.row_step = m.point_step * m.width + 16;  // padded rows
+  const char* names[3] = {"x", "y", "z"};
+  for (uint32_t i = 0; i < 3; ++i) {
+    sensor_msgs::PointField f;
+    f.name = names[i];
+    f.offset = 8 * i;
+    f.datatype = sensor_msgs::PointField::FLOAT64;
+    f.count = 1;
+    m.fields.push_back(f);
+  }
+  m.data.assign(m.row_step * m.height, 0);
+  for (uint32_t r = 0; r < 2; ++r) {
+    for (uint32_t c = 0; c < 3; ++c) {
+      const double xyz[3] = {double(r), double(c),
+                             (r == 1 && c == 2) ? std::numeric_limits<double>::quiet_NaN() : 5.0};
+      std::memcpy(&m.data[r * m.row_step + c * m.point_step], xyz, sizeof xyz);
+    }
+  }
+  const CloudConversion out = fromPointCloud2(m);
+  ASSERT_TRUE(out.ok()) << out.error;
+  EXPECT_EQ(out.points.size(), 5u);
+  EXPECT_EQ(out.non_finite, 1u);
+  EXPECT_EQ(out.points[4], Point(1.0, 1.0, 5.0));
+}
+
+TEST(PointCloudConversion, RefusesBrokenMessagesWithAReason) {
+  const sensor_msgs::PointCloud2 good = cloudOf(somePoints(10));
+  struct Case {
+    std::function<void(sensor_msgs::PointCloud2*)> break_it;
+    std::string reason;
+  };
+  const std::vector<Case> cases = {
+      {[](sensor_msgs::PointCloud2* m) { m->width = 0; }, "empty cloud"},
+      {[](sensor_msgs::PointCloud2* m) { m->data.resize(m->data.size() - 1); }, "data holds"},
+      {[](sensor_msgs::PointCloud2* m) { m->row_step = 1; }, "data holds"},
+      {[](sensor_msgs::PointCloud2* m) { m->width = 1000000; }, "data holds"},
+      {[](sensor_msgs::PointCloud2* m) { m->fields[1].name = "q"; }, "no 'y' field"},
+      {[](sensor_msgs::PointCloud2* m) { m->fields[2].datatype = sensor_msgs::PointField::INT8; },
+       "not FLOAT32"},
+      {[](sensor_msgs::PointCloud2* m) { m->fields[2].offset = 100; }, "outside point_step"},
+      {[](sensor_msgs::PointCloud2* m) { m->point_step = 0; }, "outside point_step"},
+      {[](sensor_msgs::PointCloud2* m) { m->is_bigendian = !m->is_bigendian; }, "byte order"},
+      {[](sensor_msgs::PointCloud2* m) {
+         const float nan = std::numeric_limits<float>::quiet_NaN();
+         for (size_t i = 0; i + 4 <= m->data.size(); i += 4) std::memcpy(&m->data[i], &nan, 4);
+       },
+       "are NaN or Inf"},
+  };
+  for (const Case& c : cases) {
+    sensor_msgs::PointCloud2 broken = good;
+    c.break_it(&broken);
+    const CloudConversion out = fromPointCloud2(broken);
+    EXPECT_FALSE(out.ok());
+    EXPECT_NE(out.error.find(c.reason), std::string::npos) << out.error;
+  }
+}
+
+Associations threePointsWithCandidates() {
+  Associations a;
+  a.offsets.push_back(0);
+  for (int i = 0; i < 3; ++i) {
+    a.source_points.emplace_back(i, 0, 0);
+    for (int c = 0; c < 4; ++c) {
+      a.candidates.emplace_back(i, 0.1 * c, 0);
+      a.posterior.push_back(c == 0 ? 0.7 : 0.1);
+    }
+    a.offsets.push_back(a.candidates.size());
+  }
+  return a;
+}
+
+TEST(AssociationMarkers, AlphaIsTheWeightAndTheCapKeepsWholePoints) {
+  std_msgs::Header header;
+  header.frame_id = "map";
+  const visualization_msgs::MarkerArray all =
+      associationMarkers(threePointsWithCandidates(), header, 100, 0.01);
+  ASSERT_EQ(all.markers.size(), 1u);
+  const visualization_msgs::Marker& lines = all.markers[0];
+  EXPECT_EQ(lines.type, visualization_msgs::Marker::LINE_LIST);
+  ASSERT_EQ(lines.points.size(), 24u);
+  ASSERT_EQ(lines.colors.size(), 24u);
+  double first_point_alpha = 0.0;
+  for (size_t i = 0; i < 8; i += 2) first_point_alpha += lines.colors[i].a;
+  EXPECT_NEAR(first_point_alpha, 1.0, 1e-6);
+  EXPECT_FLOAT_EQ(lines.colors[0].r, 0.7f);
+
+  // A cap of 8 lines keeps a uniform subsample of whole source points (every second point).
+  const auto capped = associationMarkers(threePointsWithCandidates(), header, 8, 0.01);
+  EXPECT_LE(capped.markers[0].points.size() / 2, 8u);
+  EXPECT_EQ(capped.markers[0].points.size() % 8, 0u);
+  EXPECT_EQ(associationMarkers(threePointsWithCandidates(), header, 0, 0.01).markers[0].action,
+            visualization_msgs::Marker::DELETE);
+}
+
+TEST(LatestInputQueue, NewerInputReplacesPendingAndStopWakesTheWorker) {
+  LatestInputQueue<int, int> queue;
+  EXPECT_FALSE(queue.putSparse(1));
+  EXPECT_TRUE(queue.putSparse(2));  // 1 was still pending: dropped
+  EXPECT_FALSE(queue.putDense(10));
+  int dense = 0, sparse = 0;
+  bool has_dense = false, has_sparse = false;
+  ASSERT_TRUE(queue.waitAndTake(&dense, &has_dense, &sparse, &has_sparse));
+  EXPECT_TRUE(has_dense && has_sparse);
+  EXPECT_EQ(dense, 10);
+  EXPECT_EQ(sparse, 2);
+
+  std::thread worker(
+      [&] { EXPECT_FALSE(queue.waitAndTake(&dense, &has_dense, &sparse, &has_sparse)); });
+  std::this_thread::sleep_for(std::chrono::milliseconds(50));
+  queue.stop();
+  worker.join();
+}
+
+TEST(AlignmentGate, RejectsUnconvergedPoorAndWildResults) {
+  RegistrationResult result;
+  result.converged = true;
+  result.inlier_fraction = 0.8;
+  const Eigen::Isometry3d seed = Eigen::Isometry3d::Identity();
+  AcceptanceThresholds thresholds;
+  EXPECT_TRUE(judgeAlignment(result, seed, thresholds).accepted);
+
+  RegistrationResult poor = result;
+  poor.inlier_fraction = 0.1;
+  EXPECT_NE(judgeAlignment(poor, seed, thresholds).reason.find("inlier fraction"),
+            std::string::npos);
+  RegistrationResult far = result;
+  far.T_target_source.translation() = Eigen::Vector3d(2.0, 0, 0);
+  EXPECT_NE(judgeAlignment(far, seed, thresholds).reason.find("max_correction_translation"),
+            std::string::npos);
+  RegistrationResult turned = result;
+  turned.T_target_source.linear() =
+      Eigen::AngleAxisd(0.5, Eigen::Vector3d::UnitZ()).toRotationMatrix();
+  EXPECT_NE(judgeAlignment(turned, seed, thresholds).reason.find("max_correction_rotation"),
+            std::string::npos);
+  RegistrationResult failed = result;
+  failed.converged = false;
+  failed.reason = "no overlap";
+  EXPECT_NE(judgeAlignment(failed, seed, thresholds).reason.find("no overlap"), std::string::npos);
+}
+
+// The inverse's covariance matches a finite-difference propagation through T -> T^-1.
+TEST(InvertedPoseCovariance, MatchesNumericPropagation) {
+  Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
+  T.linear() = Eigen::AngleAxisd(0.7, Eigen::Vector3d(1, -2, 0.5).normalized()).toRotationMatrix();
+  T.translation() = Eigen::Vector3d(3.0, -1.0, 2.0);
+  Matrix6d numeric_jacobian;
+  const double h = 1e-6;
+  for (int i = 0; i < 6; ++i) {
+    Vector6d delta = Vector6d::Zero();
+    delta(i) = h;
+    const Eigen::Isometry3d moved_inverse = applyIncrement(T, delta).inverse();
+    const Eigen::Isometry3d inverse = T.inverse();
+    // Express the change of the inverse in the same increment convention.
+    Vector6d change;
+    change.head<3>() = moved_inverse.translation() - inverse.translation();
+    const Eigen::AngleAxisd w(moved_inverse.linear() * inverse.linear().transpose());
+    change.tail<3>() = w.angle() * w.axis();
+    numeric_jacobian.col(i) = change / h;
+  }
+  Matrix6d covariance = Matrix6d::Identity();
+  covariance(0, 3) = covariance(3, 0) = 0.2;
+  covariance(4, 4) = 0.5;
+  const Matrix6d expected = numeric_jacobian * covariance * numeric_jacobian.transpose();
+  EXPECT_TRUE(invertedPoseCovariance(T, covariance).isApprox(expected, 1e-4));
+  // Inverting twice gives the original back.
+  EXPECT_TRUE(invertedPoseCovariance(T.inverse(), invertedPoseCovariance(T, covariance))
+                  .isApprox(covariance, 1e-9));
+}
+
+}  // namespace
+}  // namespace pda_registration
