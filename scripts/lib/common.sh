@@ -13,10 +13,19 @@ JOBS="${PDA_JOBS:-$(nproc)}"
 
 log() { printf '\033[1m[%s]\033[0m %s\n' "$(basename "$0")" "$*"; }
 
-# Builds the package in a catkin workspace beside the sources (a symlink, so edits need no copy).
+# Builds the package in a catkin workspace inside .build/. The workspace's package folder holds a
+# symlink to each top-level entry of the repository (edits need no copy), but not to .build
+# itself, so tools that follow links (rosrun, rospack) never loop back into the workspace.
 build_package() {
+  local package="${WORKSPACE}/src/pda_registration"
   mkdir -p "${WORKSPACE}/src"
-  ln -sfn "${REPO}" "${WORKSPACE}/src/pda_registration"
+  [[ -L "${package}" ]] && rm -f "${package}"  # an older layout linked the whole repository
+  mkdir -p "${package}"
+  find "${package}" -maxdepth 1 -type l -delete
+  local entry
+  for entry in "${REPO}"/* "${REPO}"/.clang-format; do
+    [[ -e "${entry}" ]] && ln -sfn "${entry}" "${package}/$(basename "${entry}")"
+  done
   log "building in ${WORKSPACE} (${JOBS} jobs)"
   catkin_make -C "${WORKSPACE}" -j"${JOBS}" \
     -DCMAKE_BUILD_TYPE=Release \

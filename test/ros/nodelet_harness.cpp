@@ -32,8 +32,9 @@ NodeletHarness::NodeletHarness(const std::string& nodelet_name)
       });
   rosout_ = node_.subscribe<rosgraph_msgs::Log>("/rosout", 100,
                                                 [this](const rosgraph_msgs::Log::ConstPtr& m) {
+                                                  std::lock_guard<std::mutex> lock(mutex_);
+                                                  logs_.push_back(m->msg);
                                                   if (m->level >= rosgraph_msgs::Log::WARN) {
-                                                    std::lock_guard<std::mutex> lock(mutex_);
                                                     warnings_.push_back(m->msg);
                                                   }
                                                 });
@@ -95,17 +96,30 @@ bool NodeletHarness::waitForWarnContaining(const std::string& text, double timeo
       timeout_s);
 }
 
+bool NodeletHarness::waitForLogContaining(const std::string& text, double timeout_s) {
+  return waitFor(
+      [this, &text] {
+        for (const std::string& line : logs_) {
+          if (line.find(text) != std::string::npos) return true;
+        }
+        return false;
+      },
+      timeout_s);
+}
+
 bool NodeletHarness::waitForConnections(double timeout_s) {
   const ros::WallTime end = ros::WallTime::now() + ros::WallDuration(timeout_s);
   while (ros::ok() && ros::WallTime::now() < end) {
+    // /rosout counts this test process itself as one publisher: wait for a second one.
     if (dense_.getNumSubscribers() > 0 && sparse_.getNumSubscribers() > 0 &&
-        transform_.getNumPublishers() > 0) {
+        transform_.getNumPublishers() > 0 && rosout_.getNumPublishers() > 1) {
       return true;
     }
     ros::WallDuration(0.05).sleep();
   }
-  ROS_ERROR("connections: dense %u, sparse %u subscribers; ~transform %u publishers",
-            dense_.getNumSubscribers(), sparse_.getNumSubscribers(), transform_.getNumPublishers());
+  ROS_ERROR("connections: dense %u, sparse %u subscribers; ~transform %u, /rosout %u publishers",
+            dense_.getNumSubscribers(), sparse_.getNumSubscribers(), transform_.getNumPublishers(),
+            rosout_.getNumPublishers());
   return false;
 }
 
@@ -145,6 +159,13 @@ visualization_msgs::MarkerArray NodeletHarness::lastMarkers() {
 std::vector<std::string> NodeletHarness::warnings() {
   std::lock_guard<std::mutex> lock(mutex_);
   return warnings_;
+}
+
+std::string NodeletHarness::logText() {
+  std::lock_guard<std::mutex> lock(mutex_);
+  std::string text;
+  for (const std::string& line : logs_) text += line + "\n";
+  return text;
 }
 
 Eigen::Isometry3d NodeletHarness::lookup(const std::string& parent, const std::string& child,

@@ -41,6 +41,8 @@ class NodeletHarness {
   /// Waits for the (n+1)-th ~transform, n = transforms already received.
   bool waitForNextTransform(double timeout_s);
   bool waitForWarnContaining(const std::string& text, double timeout_s);
+  /// Any level (INFO and up) from the nodelet's log on /rosout.
+  bool waitForLogContaining(const std::string& text, double timeout_s);
   /// Waits until all publishers and subscribers are connected to the nodelet.
   bool waitForConnections(double timeout_s);
 
@@ -54,6 +56,8 @@ class NodeletHarness {
   size_t markerCount();
   visualization_msgs::MarkerArray lastMarkers();
   std::vector<std::string> warnings();
+  /// Everything logged on /rosout so far, one line per message (for failure messages).
+  std::string logText();
   /// tf's transform between two frames right now (throws tf2::TransformException).
   Eigen::Isometry3d lookup(const std::string& parent, const std::string& child, double timeout_s);
 
@@ -68,7 +72,7 @@ class NodeletHarness {
   std::vector<geometry_msgs::TransformStamped> transforms_;
   std::vector<geometry_msgs::PoseWithCovarianceStamped> poses_;
   std::vector<visualization_msgs::MarkerArray> markers_received_;
-  std::vector<std::string> warnings_;
+  std::vector<std::string> warnings_, logs_;
 };
 
 /// Lines per source point and the alpha sum of each point's lines, grouped by line start.

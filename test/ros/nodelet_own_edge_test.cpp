@@ -1,0 +1,49 @@
+// rostest: the nodelet owning the dense_map -> sparse_map edge. First seed: ~initial_transform;
+// afterwards its own estimate, read back from tf. Both alignments land on the ground truth and
+// the edge on tf carries the estimate.
+#include <gtest/gtest.h>
+
+#include "nodelet_harness.hpp"
+#include "pda_registration/core/error_metrics.hpp"
+#include "test_support/shared_data.hpp"
+
+namespace pda_registration {
+namespace {
+
+TEST(NodeletOwnEdge, SeedsFromInitialTransformThenFromItsOwnEstimate) {
+  testing_support::SharedCase data;
+  std::string error;
+  ASSERT_TRUE(testing_support::loadSharedCase("room_scan", &data, &error)) << error;
+  testing_support::NodeletHarness harness("pda_registration");
+  ASSERT_TRUE(harness.waitForConnections(20.0));
+  harness.publishDense(data.target, "dense_map");
+  ros::WallDuration(1.5).sleep();
+
+  for (int round = 0; round < 2; ++round) {
+    harness.publishSparse(data.source, "sparse_map");
+    ASSERT_TRUE(harness.waitForNextTransform(30.0)) << "round " << round;
+    const Eigen::Isometry3d on_tf = harness.lookup("dense_map", "sparse_map", 5.0);
+    const PoseError e = poseError(data.source, on_tf, data.T_target_source);
+    EXPECT_LT(e.translation, 0.03) << "round " << round;
+    EXPECT_LT(e.rotation_deg, 0.75) << "round " << round;
+  }
+  // The nodelet logs its seed source whenever it changes.
+  EXPECT_TRUE(harness.waitForLogContaining("seeding from ~initial_transform", 5.0))
+      << harness.logText();
+  EXPECT_TRUE(harness.waitForLogContaining("seeding from latest tf", 0.1) ||
+              harness.waitForLogContaining("seeding from tf at the cloud's stamp", 0.1));
+  EXPECT_TRUE(harness.warnings().empty()) << harness.warnings().front();
+}
+
+}  // namespace
+}  // namespace pda_registration
+
+int main(int argc, char** argv) {
+  ::testing::InitGoogleTest(&argc, argv);
+  ros::init(argc, argv, "nodelet_own_edge_test");
+  ros::AsyncSpinner spinner(2);
+  spinner.start();
+  const int result = RUN_ALL_TESTS();
+  ros::shutdown();
+  return result;
+}
