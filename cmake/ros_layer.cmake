@@ -19,3 +19,9 @@ install(TARGETS pda_registration_ros
   LIBRARY DESTINATION ${CATKIN_PACKAGE_LIB_DESTINATION})
 install(FILES nodelet_plugins.xml DESTINATION ${CATKIN_PACKAGE_SHARE_DESTINATION})
 install(DIRECTORY launch cfg rviz DESTINATION ${CATKIN_PACKAGE_SHARE_DESTINATION})
+
+# End-to-end latency of the running nodelet (scripts/measure_latency).
+add_executable(pda_latency_probe src/tools/pda_latency_probe.cpp)
+target_compile_options(pda_latency_probe PRIVATE ${PDA_WARNINGS})
+target_link_libraries(pda_latency_probe pda_registration_ros pda_registration_tools ${catkin_LIBRARIES})
+install(TARGETS pda_latency_probe RUNTIME DESTINATION ${CATKIN_PACKAGE_BIN_DESTINATION})
