@@ -1,1 +1,27 @@
-# Scene and sensor simulation (pda_simulate) and bag evaluation tools; see issue "Offline".
+# Scene and sensor simulation (pda_simulate); see issue "Offline". The library is ROS-free except
+# the bag writer, whose ROS types stay inside its .cpp (rosbag linked privately); it needs no
+# PCL registration templates.
+add_library(pda_registration_simulation
+  src/simulation/drift_distortion.cpp
+  src/simulation/kinect_simulator.cpp
+  src/simulation/map_bag_writer.cpp
+  src/simulation/map_simulation.cpp
+  src/simulation/office_scene.cpp
+  src/simulation/scene.cpp
+  src/simulation/sensor_paths.cpp
+  src/simulation/velodyne_simulator.cpp
+)
+target_compile_options(pda_registration_simulation PRIVATE ${PDA_WARNINGS})
+target_include_directories(pda_registration_simulation SYSTEM PRIVATE ${catkin_INCLUDE_DIRS})
+target_link_libraries(pda_registration_simulation
+  PUBLIC pda_registration_core
+  PRIVATE ${catkin_LIBRARIES})
+
+add_executable(pda_simulate src/tools/pda_simulate.cpp)
+target_compile_options(pda_simulate PRIVATE ${PDA_WARNINGS})
+target_link_libraries(pda_simulate pda_registration_simulation pda_registration_tools)
+
+install(TARGETS pda_registration_simulation pda_simulate
+  ARCHIVE DESTINATION ${CATKIN_PACKAGE_LIB_DESTINATION}
+  LIBRARY DESTINATION ${CATKIN_PACKAGE_LIB_DESTINATION}
+  RUNTIME DESTINATION ${CATKIN_PACKAGE_BIN_DESTINATION})

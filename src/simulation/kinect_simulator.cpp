@@ -37,8 +37,7 @@ PointList simulateKinectFrame(const Scene& scene, const Eigen::Isometry3d& T_wor
   const Eigen::Matrix3d rotation = T_world_camera.linear();
   // A corner ray is the longest for a given depth; the margin lets noise pull a slightly
   // farther surface back into range.
-  const double longest_ray =
-      (parameters.max_depth + 0.1) / kinectPixelRay(parameters, 0, 0).x();
+  const double longest_ray = (parameters.max_depth + 0.1) / kinectPixelRay(parameters, 0, 0).x();
   const Scene nearby = scene.within(origin, longest_ray);
 
   // Noise-free depths first (in parallel), then noise in pixel order so the frame does not
@@ -62,10 +61,9 @@ PointList simulateKinectFrame(const Scene& scene, const Eigen::Isometry3d& T_wor
     for (int column = 0; column < width; ++column) {
       const double depth = true_depth[static_cast<size_t>(row) * width + column];
       if (!std::isfinite(depth)) continue;
-      const double measured =
-          parameters.noise
-              ? depth + kinectDepthNoise(parameters, depth) * standard_normal(generator)
-              : depth;
+      const double measured = parameters.noise ? depth + kinectDepthNoise(parameters, depth) *
+                                                             standard_normal(generator)
+                                               : depth;
       if (measured < parameters.min_depth || measured > parameters.max_depth) continue;
       const Eigen::Vector2d slope = pixelSlope(parameters, column, row);
       points.push_back(T_world_camera * (measured * Eigen::Vector3d(1.0, slope.x(), slope.y())));

@@ -63,12 +63,13 @@ struct WallRun {
 
 void addShell(Scene* scene, double length, double outer_y, double height) {
   const double t = kWallThickness;
-  scene->addBox(Vector3d(-t, -t, -t), Vector3d(length + t, outer_y + t, 0.0));           // floor
-  scene->addBox(Vector3d(-t, -t, height), Vector3d(length + t, outer_y + t, height + t));  // ceiling
-  scene->addBox(Vector3d(-t, -t, 0.0), Vector3d(0.0, outer_y + t, height));               // west
-  scene->addBox(Vector3d(length, -t, 0.0), Vector3d(length + t, outer_y + t, height));    // east
-  scene->addBox(Vector3d(0.0, -t, 0.0), Vector3d(length, 0.0, height));                   // south
-  scene->addBox(Vector3d(0.0, outer_y, 0.0), Vector3d(length, outer_y + t, height));      // north
+  scene->addBox(Vector3d(-t, -t, -t), Vector3d(length + t, outer_y + t, 0.0));  // floor
+  scene->addBox(Vector3d(-t, -t, height),
+                Vector3d(length + t, outer_y + t, height + t));                         // ceiling
+  scene->addBox(Vector3d(-t, -t, 0.0), Vector3d(0.0, outer_y + t, height));             // west
+  scene->addBox(Vector3d(length, -t, 0.0), Vector3d(length + t, outer_y + t, height));  // east
+  scene->addBox(Vector3d(0.0, -t, 0.0), Vector3d(length, 0.0, height));                 // south
+  scene->addBox(Vector3d(0.0, outer_y, 0.0), Vector3d(length, outer_y + t, height));    // north
 }
 
 // The partition between office and corridor: three wall pieces and a lintel over each door.
@@ -78,8 +79,7 @@ void addPartition(Scene* scene, double length, double y, double height,
   for (double centre : door_centres) {
     const double left = centre - 0.5 * kDoorWidth, right = centre + 0.5 * kDoorWidth;
     scene->addBox(Vector3d(piece_start, y, 0.0), Vector3d(left, y + kPartitionThickness, height));
-    scene->addBox(Vector3d(left, y, kDoorHeight),
-                  Vector3d(right, y + kPartitionThickness, height));
+    scene->addBox(Vector3d(left, y, kDoorHeight), Vector3d(right, y + kPartitionThickness, height));
     piece_start = right;
   }
   scene->addBox(Vector3d(piece_start, y, 0.0), Vector3d(length, y + kPartitionThickness, height));
@@ -112,7 +112,8 @@ void addCabinets(Scene* scene, Random* random, const WallRun& run, std::vector<S
     run.addBox(scene, span, 0.0, kCabinetDepth, 0.0, height);
     if (height < 1.0 && random->chance(0.5)) {  // a box of files on a low cabinet
       const double at = random->uniform(span.first + 0.05, span.second - 0.45);
-      run.addBox(scene, Span(at, at + 0.4), 0.05, 0.35, height, height + random->uniform(0.2, 0.35));
+      run.addBox(scene, Span(at, at + 0.4), 0.05, 0.35, height,
+                 height + random->uniform(0.2, 0.35));
     }
   }
 }
@@ -142,8 +143,7 @@ void addCorridorFurniture(Scene* scene, Random* random, const WallRun& run) {
 
 // Two back-to-back rows of desks with monitors, chairs and bins, a privacy screen between the
 // rows, and a pillar at each end of the island.
-void addDeskIsland(Scene* scene, Random* random, const Eigen::AlignedBox2d& island,
-                   double height) {
+void addDeskIsland(Scene* scene, Random* random, const Eigen::AlignedBox2d& island, double height) {
   const double centre_y = island.center().y();
   const double pillar_radius = random->uniform(0.2, 0.3);
   scene->addCylinder(Vector2d(island.min().x() + 0.35, centre_y), pillar_radius, 0.0, height);
@@ -178,7 +178,8 @@ void addDeskIsland(Scene* scene, Random* random, const Eigen::AlignedBox2d& isla
       if (random->chance(0.8)) {
         const double cx = middle + random->uniform(-0.15, 0.15);
         const double reach = random->uniform(0.7, 0.85);  // how far the chair is pushed in
-        scene->addBox(Vector3d(cx - 0.25, y(reach), 0.42), Vector3d(cx + 0.25, y(reach + 0.5), 0.48));
+        scene->addBox(Vector3d(cx - 0.25, y(reach), 0.42),
+                      Vector3d(cx + 0.25, y(reach + 0.5), 0.48));
         scene->addBox(Vector3d(cx - 0.23, y(reach + 0.45), 0.48),
                       Vector3d(cx + 0.23, y(reach + 0.5), 0.95));
         scene->addCylinder(Vector2d(cx, y(reach + 0.25)), 0.04, 0.0, 0.42);
@@ -209,8 +210,8 @@ OfficeScene makeOfficeScene(uint64_t seed) {
   const double corridor_width = random.uniform(1.8, 2.4);
   const double corridor_y = width + kPartitionThickness;
   office.office = Eigen::AlignedBox2d(Vector2d(0.0, 0.0), Vector2d(length, width));
-  office.corridor = Eigen::AlignedBox2d(Vector2d(0.0, corridor_y),
-                                        Vector2d(length, corridor_y + corridor_width));
+  office.corridor =
+      Eigen::AlignedBox2d(Vector2d(0.0, corridor_y), Vector2d(length, corridor_y + corridor_width));
   office.ceiling_height = height;
   Scene* scene = &office.scene;
 
@@ -221,10 +222,10 @@ OfficeScene makeOfficeScene(uint64_t seed) {
 
   // The office walls, counter-clockwise, each seen from inside the office.
   const std::vector<WallRun> office_walls = {
-      {Vector2d(0.0, 0.0), Vector2d(1.0, 0.0), Vector2d(0.0, 1.0), length},       // south
-      {Vector2d(length, 0.0), Vector2d(0.0, 1.0), Vector2d(-1.0, 0.0), width},    // east
+      {Vector2d(0.0, 0.0), Vector2d(1.0, 0.0), Vector2d(0.0, 1.0), length},         // south
+      {Vector2d(length, 0.0), Vector2d(0.0, 1.0), Vector2d(-1.0, 0.0), width},      // east
       {Vector2d(length, width), Vector2d(-1.0, 0.0), Vector2d(0.0, -1.0), length},  // partition
-      {Vector2d(0.0, width), Vector2d(0.0, -1.0), Vector2d(1.0, 0.0), width},     // west
+      {Vector2d(0.0, width), Vector2d(0.0, -1.0), Vector2d(1.0, 0.0), width},       // west
   };
   for (size_t wall = 0; wall < office_walls.size(); ++wall) {
     const WallRun& run = office_walls[wall];

@@ -11,7 +11,8 @@ constexpr double kInfinity = std::numeric_limits<double>::infinity();
 // Hits closer than this are the surface the ray starts on, not a new one.
 constexpr double kMinimumHit = 1e-9;
 
-// The parameter interval [enter, exit] in which the ray is inside the solid; empty when enter > exit.
+// The parameter interval [enter, exit] in which the ray is inside the solid; empty when enter >
+// exit.
 struct Interval {
   double enter = -kInfinity;
   double exit = kInfinity;
@@ -81,8 +82,7 @@ double distanceToBox(const Box& box, const Eigen::Vector3d& point) {
 }
 
 double distanceToCylinder(const VerticalCylinder& cylinder, const Eigen::Vector3d& point) {
-  const double radial =
-      std::max(0.0, (point.head<2>() - cylinder.centre).norm() - cylinder.radius);
+  const double radial = std::max(0.0, (point.head<2>() - cylinder.centre).norm() - cylinder.radius);
   const double vertical = std::max({0.0, cylinder.z_min - point.z(), point.z() - cylinder.z_max});
   return std::hypot(radial, vertical);
 }

@@ -58,8 +58,8 @@ std::vector<Eigen::Isometry3d> velodynePoses(const OfficeScene& office, int pose
   std::vector<Eigen::Isometry3d> result;
   for (int i = 0; i < poses; ++i) {
     const LoopPoint point = walkwayPoint(office, (i + 0.3) / poses);
-    result.push_back(
-        sensorPose(Eigen::Vector3d(point.position.x(), point.position.y(), 0.8), point.heading, 0.0));
+    result.push_back(sensorPose(Eigen::Vector3d(point.position.x(), point.position.y(), 0.8),
+                                point.heading, 0.0));
   }
   return result;
 }

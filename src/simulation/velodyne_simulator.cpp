@@ -41,8 +41,8 @@ PointList simulateVelodyneRevolution(const Scene& scene, const Eigen::Isometry3d
 #pragma omp parallel for schedule(static)
   for (int column = 0; column < columns; ++column) {
     for (int ring = 0; ring < rings; ++ring) {
-      true_range[static_cast<size_t>(column) * rings + ring] = nearby.castRay(
-          origin, rotation * velodyneBeam(parameters, ring, column), cast_range);
+      true_range[static_cast<size_t>(column) * rings + ring] =
+          nearby.castRay(origin, rotation * velodyneBeam(parameters, ring, column), cast_range);
     }
   }
 

@@ -24,10 +24,10 @@ struct KinectParameters {
   double min_depth = 0.5;  ///< [m]
   double max_depth = 4.5;  ///< [m]
   // sigma(z) = noise_constant + noise_quadratic * (z - noise_offset)^2
-  double noise_constant = 0.0012;  ///< [m]
+  double noise_constant = 0.0012;   ///< [m]
   double noise_quadratic = 0.0019;  ///< [1/m]
-  double noise_offset = 0.4;       ///< [m]
-  bool noise = true;               ///< false: exact depths (for tests and ground-truth clouds)
+  double noise_offset = 0.4;        ///< [m]
+  bool noise = true;                ///< false: exact depths (for tests and ground-truth clouds)
 };
 
 /// Standard deviation of the depth noise at depth z [m].

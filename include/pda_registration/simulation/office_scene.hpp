@@ -17,10 +17,10 @@ namespace simulation {
 
 struct OfficeScene {
   Scene scene;
-  Eigen::AlignedBox2d office;    ///< free floor of the office, inside its walls [m]
-  Eigen::AlignedBox2d corridor;  ///< free floor of the corridor [m]
-  double ceiling_height = 0.0;   ///< [m]
-  double walkway_inset = 1.4;    ///< [m] distance of the sensor loop from the office walls
+  Eigen::AlignedBox2d office;      ///< free floor of the office, inside its walls [m]
+  Eigen::AlignedBox2d corridor;    ///< free floor of the corridor [m]
+  double ceiling_height = 0.0;     ///< [m]
+  double walkway_inset = 1.4;      ///< [m] distance of the sensor loop from the office walls
   double walkway_clearance = 0.6;  ///< [m] free half-width of the band around the loop
 };
 

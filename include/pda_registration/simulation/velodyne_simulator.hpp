@@ -19,8 +19,8 @@ struct VelodyneParameters {
   double lowest_elevation_deg = -15.0;
   double ring_spacing_deg = 2.0;
   double azimuth_step_deg = 0.2;
-  double min_range = 0.4;    ///< [m] the velodyne_pointcloud driver's default cut-off
-  double max_range = 100.0;  ///< [m]
+  double min_range = 0.4;     ///< [m] the velodyne_pointcloud driver's default cut-off
+  double max_range = 100.0;   ///< [m]
   double range_noise = 0.03;  ///< [m] standard deviation
   bool noise = true;          ///< false: exact ranges (for tests)
 };
