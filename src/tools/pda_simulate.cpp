@@ -103,6 +103,21 @@ int main(int argc, char** argv) {
   options.translation = Eigen::Vector3d(translation[0], translation[1], translation[2]);
   options.kinect.noise = options.velodyne.noise = !cl.has("no-noise");
 
+  // Unusable destinations fail before the simulation, not after it.
+  const std::filesystem::path folder(cl.text("output"));
+  if (cl.has("output")) {
+    std::error_code failure;
+    std::filesystem::create_directories(folder, failure);
+    if (failure) return usageError("--output: cannot create '" + folder.string() + "'");
+  }
+  if (cl.has("bag")) {
+    const std::filesystem::path bag_folder =
+        std::filesystem::absolute(cl.text("bag")).parent_path();
+    if (!std::filesystem::is_directory(bag_folder)) {
+      return usageError("--bag: no directory '" + bag_folder.string() + "'");
+    }
+  }
+
   const auto start = std::chrono::steady_clock::now();
   const SimulatedMaps maps = simulateMaps(options);
   const double simulation_ms =
@@ -111,10 +126,6 @@ int main(int argc, char** argv) {
   JsonLine files;
   std::string error;
   if (cl.has("output")) {
-    const std::filesystem::path folder(cl.text("output"));
-    std::error_code created;
-    std::filesystem::create_directories(folder, created);
-    if (created) return usageError("--output: cannot create '" + folder.string() + "'");
     const std::string target = (folder / "target.pcd").string();
     const std::string source = (folder / "source.pcd").string();
     const std::string transform = (folder / "T_target_source.txt").string();

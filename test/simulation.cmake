@@ -1,0 +1,11 @@
+# gtest for the scene and sensor simulation, its bag and the pda_simulate tool (run as a user
+# runs it). Included from test/CMakeLists.txt.
+catkin_add_gtest(simulation_test simulation_test.cpp)
+target_compile_options(simulation_test PRIVATE ${PDA_WARNINGS})
+# The bag test reads the bag back with rosbag::View.
+target_include_directories(simulation_test SYSTEM PRIVATE ${catkin_INCLUDE_DIRS})
+target_link_libraries(simulation_test
+  pda_test_support pda_registration_simulation gtest_main ${catkin_LIBRARIES})
+target_compile_definitions(simulation_test PRIVATE
+  PDA_SIMULATE_BINARY="$<TARGET_FILE:pda_simulate>")
+add_dependencies(simulation_test pda_simulate)
