@@ -94,7 +94,7 @@ int main(int argc, char** argv) {
                         cl.number("seed-error-deg", &seed_error_deg, 0.0, 180.0) &&
                         cl.number("seed-error-m", &seed_error_m, 0.0, 1e3) &&
                         cl.integer("dense-messages", &bag_options.dense_messages, 1, 100) &&
-                        cl.integer("sparse-messages", &bag_options.sparse_messages, 1, 3600) &&
+                        cl.integer("sparse-messages", &bag_options.sparse_messages, 1, 100) &&
                         cl.number("tf-rate", &bag_options.tf_rate, 0.1, 1000.0);
   if (!flags_ok) return usageError(cl.error());
   if (translation.size() != 3)
