@@ -1,0 +1,1 @@
+# Tests of pda_bag_eval; included from test/CMakeLists.txt.
