@@ -25,3 +25,9 @@ install(TARGETS pda_registration_simulation pda_simulate
   ARCHIVE DESTINATION ${CATKIN_PACKAGE_LIB_DESTINATION}
   LIBRARY DESTINATION ${CATKIN_PACKAGE_LIB_DESTINATION}
   RUNTIME DESTINATION ${CATKIN_PACKAGE_BIN_DESTINATION})
+
+# A real case folder as a bag in the same layout, for replay through the nodelet.
+add_executable(pda_case_bag src/tools/pda_case_bag.cpp)
+target_compile_options(pda_case_bag PRIVATE ${PDA_WARNINGS})
+target_link_libraries(pda_case_bag pda_registration_simulation pda_registration_tools)
+install(TARGETS pda_case_bag RUNTIME DESTINATION ${CATKIN_PACKAGE_BIN_DESTINATION})

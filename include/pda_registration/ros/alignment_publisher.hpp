@@ -24,7 +24,7 @@ struct AlignmentOutput {
   const PointList* aligned = nullptr;  ///< registration source moved into target_frame
   const Associations* associations = nullptr;
   size_t max_markers = 0;
-  double marker_line_width = 0.005;
+  double marker_line_width = 0.01;
 };
 
 class AlignmentPublisher {

@@ -21,7 +21,7 @@ struct NodeSettings {
       10.0;  ///< [Hz] re-broadcast of the last good estimate (0 = only on updates)
   std::string expected_dense_frame;  ///< non-empty: clouds in another frame are refused
   std::string expected_sparse_frame;
-  double marker_line_width = 0.005;  ///< [m]
+  double marker_line_width = 0.01;  ///< [m]
 };
 
 /// Reads the settings; false with a one-line reason on a bad value (e.g. a malformed
