@@ -102,6 +102,7 @@ TEST(SyntheticRegistration, EstimatedSigmaMakesTheResultUnitInvariant) {
   in_metres.radius = 0.5;
   RegistrationParameters in_millimetres = in_metres;
   in_millimetres.radius *= 1000.0;
+  in_millimetres.min_radius *= 1000.0;
   in_millimetres.normal_voxel_size *= 1000.0;
   in_millimetres.translation_epsilon *= 1000.0;
 

@@ -49,6 +49,15 @@ bool sanitiseInitialGuess(const Eigen::Isometry3d& initial, Eigen::Isometry3d* o
   return true;
 }
 
+// The candidate radius of a refine run: 6 sigma clamped to [min_radius, radius]. Far candidates
+// only matter while the estimate is far off; once it is close they are mostly wrong surfaces
+// (parts of the sparse map the dense map never saw), and dropping them keeps them from biasing
+// the fit. 6 sigma keeps virtually every inlier.
+double candidateRadius(const RegistrationParameters& p, double sigma_squared) {
+  if (!(sigma_squared > 0.0)) return p.radius;
+  return std::min(p.radius, std::max(p.min_radius, 6.0 * std::sqrt(sigma_squared)));
+}
+
 bool runMStep(const WeightedCorrespondences& correspondences, const RegistrationParameters& p,
               Eigen::Isometry3d* T) {
   switch (p.solver) {
@@ -283,14 +292,16 @@ RegistrationResult PdaRegistration::alignUnchecked(const PointList& source_input
     return result;
   }
 
-  // Early runs on a strided subset: they only need to bring the estimate close, and cost a
-  // fraction of a full candidate search. Never in single-run mode.
+  // Two stages. Approach: the full radius, on a strided subset of the source (the runs only
+  // need to bring the estimate close, at a fraction of the cost), until a run moves less than 10
+  // epsilons. Refine: every point, the shrinking radius, until a run moves less than the
+  // epsilons. Single-run mode (the paper's) is one refine run at the full radius.
   PointList coarse_source;
   if (p.max_runs > 1 && p.coarse_stride > 1 &&
       source.size() / p.coarse_stride >= 20 * static_cast<size_t>(p.min_correspondences)) {
     for (size_t j = 0; j < source.size(); j += p.coarse_stride) coarse_source.push_back(source[j]);
   }
-  bool coarse_stage = !coarse_source.empty();
+  bool approach_stage = p.max_runs > 1;
 
   EmState state;
   state.T = T;
@@ -300,14 +311,15 @@ RegistrationResult PdaRegistration::alignUnchecked(const PointList& source_input
   bool em_settled = false;  // did the last run's EM loop stop on the epsilons?
 
   for (int run = 1; run <= p.max_runs; ++run) {
-    const PointList& active = coarse_stage ? coarse_source : source;
-    candidates = findCandidateSets(*index, active, state.T, p.k, p.radius, p.threads);
+    const PointList& active = approach_stage && !coarse_source.empty() ? coarse_source : source;
+    const double radius = approach_stage ? p.radius : candidateRadius(p, state.sigma_squared);
+    candidates = findCandidateSets(*index, active, state.T, p.k, radius, p.threads);
     result.runs = run;
     result.source_points_with_candidates = candidates.sourcePointsWithCandidates();
     if (result.source_points_with_candidates < static_cast<size_t>(p.min_correspondences)) {
       std::ostringstream reason;
       reason << "no overlap: only " << result.source_points_with_candidates
-             << " source points have a target point within radius " << p.radius << " (need "
+             << " source points have a target point within radius " << radius << " (need "
              << p.min_correspondences << ")";
       result.reason = reason.str();
       result.sigma = std::sqrt(state.sigma_squared);
@@ -319,10 +331,10 @@ RegistrationResult PdaRegistration::alignUnchecked(const PointList& source_input
       return result;
     }
     last_run_step = incrementBetween(T_run_start, state.T);
-    if (coarse_stage) {
-      coarse_stage = !(last_run_step.translation <= 10.0 * p.translation_epsilon &&
-                       last_run_step.rotation <= 10.0 * p.rotation_epsilon);
-      continue;  // convergence is only ever declared on every point
+    if (approach_stage) {
+      approach_stage = !(last_run_step.translation <= 10.0 * p.translation_epsilon &&
+                         last_run_step.rotation <= 10.0 * p.rotation_epsilon);
+      continue;  // convergence is only declared in the refine stage
     }
     if (isSmall(last_run_step, p)) {
       result.converged = true;

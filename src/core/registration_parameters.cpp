@@ -15,6 +15,8 @@ std::string validateParameters(const RegistrationParameters& p) {
     error << "k must be in [1, 1000] (got " << p.k << ")";
   else if (!finitePositive(p.radius))
     error << "radius must be > 0 and finite (got " << p.radius << ")";
+  else if (!finitePositive(p.min_radius))
+    error << "min_radius must be > 0 and finite (got " << p.min_radius << ")";
   else if (std::isnan(p.nu) || !(p.nu > 0.0))
     error << "nu must be > 0 or inf (got " << p.nu << ")";
   else if (p.sigma_mode == SigmaMode::kFixed && !finitePositive(p.fixed_sigma))

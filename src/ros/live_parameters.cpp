@@ -10,6 +10,7 @@ LiveParameters liveParametersFrom(const PdaRegistrationConfig& c) {
   RegistrationParameters& p = live.registration;
   p.k = c.k;
   p.radius = c.radius;
+  p.min_radius = c.min_radius;
   p.nu = c.gaussian ? std::numeric_limits<double>::infinity() : c.nu;
   parseSigmaMode(c.sigma_mode, &p.sigma_mode);  // the .cfg enum only offers valid names
   p.fixed_sigma = c.fixed_sigma;

@@ -27,7 +27,8 @@ std::set<std::string> settingsFlagNames() {
           "normal-voxel",
           "solver-iterations",
           "coarse-stride",
-          "ndt-epsilon"};
+          "ndt-epsilon",
+          "min-radius"};
 }
 
 std::string settingsFlagsHelp() {
@@ -37,6 +38,8 @@ std::string settingsFlagsHelp() {
   help << "  --k N                   candidates per source point (" << p.k << ")\n"
        << "  --radius R              candidate radius [m]; ICP/GICP max correspondence distance ("
        << p.radius << ")\n"
+       << "  --min-radius R          later runs shrink the radius to 6 sigma, not below R [m] ("
+       << p.min_radius << ")\n"
        << "  --nu V                  Student-t degrees of freedom, 'inf' = Gaussian (" << p.nu
        << ")\n"
        << "  --runs N                max candidate-set recomputations, 1 = single run ("
@@ -92,7 +95,8 @@ bool readSettingsFlags(CommandLine* cl, MethodSettings* settings) {
       !cl->number("normal-voxel", &p.normal_voxel_size, 1e-9, 1e6) ||
       !cl->integer("solver-iterations", &p.solver_max_iterations, 1, 1000) ||
       !cl->integer("coarse-stride", &p.coarse_stride, 1, 1000) ||
-      !cl->number("ndt-epsilon", &b.ndt_transformation_epsilon, 0.0, 1e3)) {
+      !cl->number("ndt-epsilon", &b.ndt_transformation_epsilon, 0.0, 1e3) ||
+      !cl->number("min-radius", &p.min_radius, 1e-9, 1e9)) {
     return false;
   }
   if (cl->has("solver") && !parseSolver(cl->text("solver"), &p.solver)) {

@@ -24,6 +24,8 @@ struct RegistrationParameters {
   // --- Data association (paper Sec. IV) -----------------------------------------------------
   int k = 5;            ///< max candidates per source point (k nearest target points)
   double radius = 1.0;  ///< [length] candidates must lie within this distance
+  /// [length] later runs shrink the radius to 6 sigma but not below this (>= radius: fixed)
+  double min_radius = 0.25;
   // --- E-step ------------------------------------------------------------------------------
   double nu = 5.0;  ///< Student-t degrees of freedom; +inf gives the Gaussian of eq. 19
   SigmaMode sigma_mode = SigmaMode::kEstimated;
