@@ -1,20 +1,24 @@
 # The thin ROS layer: message conversions, markers, settings and the nodelet.
 include_directories(SYSTEM ${catkin_INCLUDE_DIRS})
 
+# PointCloud2 <-> point list, shared by the nodelet, the bag tools and the simulator's bag writer.
+add_library(pda_registration_conversions src/ros/point_cloud_conversion.cpp)
+target_compile_options(pda_registration_conversions PRIVATE ${PDA_WARNINGS})
+target_link_libraries(pda_registration_conversions pda_registration_core ${catkin_LIBRARIES})
+
 add_library(pda_registration_ros
   src/ros/alignment_publisher.cpp
   src/ros/association_markers.cpp
   src/ros/live_parameters.cpp
   src/ros/map_alignment_nodelet.cpp
   src/ros/node_settings.cpp
-  src/ros/point_cloud_conversion.cpp
   src/ros/seed_lookup.cpp
 )
 target_compile_options(pda_registration_ros PRIVATE ${PDA_WARNINGS})
-target_link_libraries(pda_registration_ros pda_registration_core ${catkin_LIBRARIES})
+target_link_libraries(pda_registration_ros pda_registration_conversions ${catkin_LIBRARIES})
 add_dependencies(pda_registration_ros ${PROJECT_NAME}_gencfg ${catkin_EXPORTED_TARGETS})
 
-install(TARGETS pda_registration_ros
+install(TARGETS pda_registration_conversions pda_registration_ros
   ARCHIVE DESTINATION ${CATKIN_PACKAGE_LIB_DESTINATION}
   LIBRARY DESTINATION ${CATKIN_PACKAGE_LIB_DESTINATION})
 install(FILES nodelet_plugins.xml DESTINATION ${CATKIN_PACKAGE_SHARE_DESTINATION})

@@ -15,7 +15,7 @@ target_compile_options(pda_registration_simulation PRIVATE ${PDA_WARNINGS})
 target_include_directories(pda_registration_simulation SYSTEM PRIVATE ${catkin_INCLUDE_DIRS})
 target_link_libraries(pda_registration_simulation
   PUBLIC pda_registration_core
-  PRIVATE ${catkin_LIBRARIES})
+  PRIVATE pda_registration_conversions ${catkin_LIBRARIES})
 
 add_executable(pda_simulate src/tools/pda_simulate.cpp)
 target_compile_options(pda_simulate PRIVATE ${PDA_WARNINGS})

@@ -7,7 +7,6 @@
 #include <rosbag/bag.h>
 #include <rosbag/view.h>
 #include <sensor_msgs/PointCloud2.h>
-#include <sys/wait.h>
 #include <tf2_msgs/TFMessage.h>
 
 #include <cmath>
@@ -15,7 +14,6 @@
 #include <cstring>
 #include <fstream>
 #include <map>
-#include <regex>
 
 #include "pda_registration/core/error_metrics.hpp"
 #include "pda_registration/core/pda_registration.hpp"
@@ -26,6 +24,7 @@
 #include "pda_registration/simulation/map_simulation.hpp"
 #include "pda_registration/simulation/sensor_paths.hpp"
 #include "pda_registration/tools/cloud_io.hpp"
+#include "test_support/command_run.hpp"
 
 namespace pda_registration {
 namespace simulation {
@@ -33,13 +32,13 @@ namespace {
 
 using Eigen::Vector2d;
 using Eigen::Vector3d;
+using testing_support::CommandRun;
+using testing_support::jsonNumber;
+using testing_support::runCommand;
+using testing_support::temporaryPath;
 
 constexpr double kDegrees = M_PI / 180.0;
 constexpr double kInfinity = std::numeric_limits<double>::infinity();
-
-std::string temporaryPath(const std::string& name) {
-  return ::testing::TempDir() + "pda_simulation_test_" + name;
-}
 
 double standardDeviation(const std::vector<double>& values) {
   double sum = 0.0, sum_squares = 0.0;
@@ -478,28 +477,8 @@ TEST(MapBag, HoldsTheTopicsMessageCountsFramesAndTransforms) {
 
 // --- pda_simulate ----------------------------------------------------------------------------
 
-struct CommandRun {
-  int exit_code;
-  std::string out, err;
-};
-
-std::string readFile(const std::string& path) {
-  std::ifstream file(path);
-  return std::string(std::istreambuf_iterator<char>(file), std::istreambuf_iterator<char>());
-}
-
 CommandRun runPdaSimulate(const std::string& arguments) {
-  const std::string out = temporaryPath("stdout"), err = temporaryPath("stderr");
-  const int status = std::system(
-      (std::string(PDA_SIMULATE_BINARY) + " " + arguments + " >" + out + " 2>" + err).c_str());
-  return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, readFile(out), readFile(err)};
-}
-
-double jsonNumber(const std::string& json, const std::string& key) {
-  std::smatch match;
-  const std::regex pattern("\"" + key + "\":(-?[0-9.eE+-]+)");
-  if (!std::regex_search(json, match, pattern)) return std::nan("");
-  return std::stod(match[1]);
+  return runCommand(PDA_SIMULATE_BINARY, arguments);
 }
 
 TEST(PdaSimulateTool, WritesACaseFolderAndABagLikeTheLibrary) {

@@ -11,42 +11,21 @@
 #include "pda_registration/core/transform_io.hpp"
 #include "pda_registration/tools/cloud_io.hpp"
 #include "pda_registration/tools/command_line.hpp"
+#include "test_support/command_run.hpp"
 #include "test_support/shared_data.hpp"
 #include "test_support/synthetic_scene.hpp"
 
 namespace pda_registration {
 namespace {
 
-struct CommandRun {
-  int exit_code;
-  std::string out, err;
-};
-
-std::string readFile(const std::string& path) {
-  std::ifstream file(path);
-  return std::string(std::istreambuf_iterator<char>(file), std::istreambuf_iterator<char>());
-}
-
-std::string temporaryPath(const std::string& name) {
-  return ::testing::TempDir() + "pda_tools_test_" + name;
-}
+using testing_support::CommandRun;
+using testing_support::jsonNumber;
+using testing_support::lineCount;
+using testing_support::runCommand;
+using testing_support::temporaryPath;
 
 CommandRun runPdaAlign(const std::string& arguments) {
-  const std::string out = temporaryPath("stdout"), err = temporaryPath("stderr");
-  const int status = std::system(
-      (std::string(PDA_ALIGN_BINARY) + " " + arguments + " >" + out + " 2>" + err).c_str());
-  return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, readFile(out), readFile(err)};
-}
-
-double jsonNumber(const std::string& json, const std::string& key) {
-  std::smatch match;
-  const std::regex pattern("\"" + key + "\":(-?[0-9.eE+-]+)");
-  if (!std::regex_search(json, match, pattern)) return std::nan("");
-  return std::stod(match[1]);
-}
-
-size_t lineCount(const std::string& text) {
-  return static_cast<size_t>(std::count(text.begin(), text.end(), '\n'));
+  return runCommand(PDA_ALIGN_BINARY, arguments);
 }
 
 void writeAsciiPly(const std::string& path, const PointList& points) {

@@ -3,13 +3,15 @@
 #include <geometry_msgs/TransformStamped.h>
 #include <rosbag/bag.h>
 #include <sensor_msgs/PointCloud2.h>
+#include <tf2_eigen/tf2_eigen.h>
 #include <tf2_msgs/TFMessage.h>
 
 #include <algorithm>
 #include <boost/make_shared.hpp>
 #include <cmath>
-#include <cstring>
 #include <vector>
+
+#include "pda_registration/ros/point_cloud_conversion.hpp"
 
 namespace pda_registration {
 namespace simulation {
@@ -17,51 +19,20 @@ namespace {
 
 sensor_msgs::PointCloud2 toCloudMessage(const PointList& points, const std::string& frame,
                                         const ros::Time& stamp) {
-  sensor_msgs::PointCloud2 cloud;
-  cloud.header.frame_id = frame;
-  cloud.header.stamp = stamp;
-  cloud.height = 1;
-  cloud.width = static_cast<uint32_t>(points.size());
-  const char* names[] = {"x", "y", "z"};
-  for (uint32_t i = 0; i < 3; ++i) {
-    sensor_msgs::PointField field;
-    field.name = names[i];
-    field.offset = 4 * i;
-    field.datatype = sensor_msgs::PointField::FLOAT32;
-    field.count = 1;
-    cloud.fields.push_back(field);
-  }
-  cloud.is_bigendian = false;
-  cloud.point_step = 12;
-  cloud.row_step = cloud.point_step * cloud.width;
-  cloud.is_dense = true;
-  cloud.data.resize(cloud.row_step);
-  uint8_t* out = cloud.data.data();
-  for (const Point& p : points) {
-    const float xyz[3] = {static_cast<float>(p.x()), static_cast<float>(p.y()),
-                          static_cast<float>(p.z())};
-    std::memcpy(out, xyz, sizeof(xyz));
-    out += sizeof(xyz);
-  }
-  return cloud;
+  std_msgs::Header header;
+  header.frame_id = frame;
+  header.stamp = stamp;
+  return toPointCloud2(points, header);
 }
 
 geometry_msgs::TransformStamped toTransformMessage(const Eigen::Isometry3d& T,
                                                    const std::string& parent,
                                                    const std::string& child,
                                                    const ros::Time& stamp) {
-  geometry_msgs::TransformStamped message;
+  geometry_msgs::TransformStamped message = tf2::eigenToTransform(T);
   message.header.frame_id = parent;
   message.header.stamp = stamp;
   message.child_frame_id = child;
-  message.transform.translation.x = T.translation().x();
-  message.transform.translation.y = T.translation().y();
-  message.transform.translation.z = T.translation().z();
-  const Eigen::Quaterniond q(T.linear());
-  message.transform.rotation.x = q.x();
-  message.transform.rotation.y = q.y();
-  message.transform.rotation.z = q.z();
-  message.transform.rotation.w = q.w();
   return message;
 }
 

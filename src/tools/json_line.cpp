@@ -46,6 +46,14 @@ JsonLine& JsonLine::add(const std::string& key, const std::string& value) {
   return *this;
 }
 
+JsonLine& JsonLine::add(const std::string& key, const Eigen::Isometry3d& T) {
+  std::ostream& out = next(key);
+  out << std::setprecision(10) << '[';
+  for (int i = 0; i < 16; ++i) out << (i ? "," : "") << T.matrix()(i / 4, i % 4);
+  out << ']';
+  return *this;
+}
+
 JsonLine& JsonLine::addRaw(const std::string& key, const std::string& json) {
   next(key) << json;
   return *this;

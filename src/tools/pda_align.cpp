@@ -17,6 +17,7 @@
 #include "pda_registration/tools/json_line.hpp"
 #include "pda_registration/tools/method_runner.hpp"
 #include "pda_registration/tools/settings_flags.hpp"
+#include "pda_registration/tools/statistics.hpp"
 
 using namespace pda_registration;
 
@@ -47,21 +48,6 @@ double peakRssMegabytes() {
   rusage usage{};
   getrusage(RUSAGE_SELF, &usage);
   return static_cast<double>(usage.ru_maxrss) / 1024.0;
-}
-
-double median(std::vector<double> values) {
-  std::sort(values.begin(), values.end());
-  const size_t n = values.size();
-  return n == 0 ? 0.0 : (n % 2 ? values[n / 2] : 0.5 * (values[n / 2 - 1] + values[n / 2]));
-}
-
-std::string matrixJson(const Eigen::Isometry3d& T) {
-  std::ostringstream out;
-  out.precision(10);
-  out << '[';
-  for (int i = 0; i < 16; ++i) out << (i ? "," : "") << T.matrix()(i / 4, i % 4);
-  out << ']';
-  return out.str();
 }
 
 std::vector<std::string> splitList(const std::string& text) {
@@ -188,7 +174,7 @@ int main(int argc, char** argv) {
     }
     json.addRaw("compare", speed.str());
   }
-  json.addRaw("T", matrixJson(r.T_target_source));
+  json.add("T", r.T_target_source);
   json.add("peak_rss_mb", peakRssMegabytes());
   std::cout << json.str() << std::endl;
 

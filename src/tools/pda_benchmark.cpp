@@ -19,6 +19,7 @@
 #include "pda_registration/tools/command_line.hpp"
 #include "pda_registration/tools/method_runner.hpp"
 #include "pda_registration/tools/settings_flags.hpp"
+#include "pda_registration/tools/statistics.hpp"
 
 using namespace pda_registration;
 
@@ -57,12 +58,6 @@ std::vector<std::string> split(const std::string& text, char separator) {
     if (!item.empty()) items.push_back(item);
   }
   return items;
-}
-
-double median(std::vector<double> v) {
-  if (v.empty()) return 0.0;
-  std::sort(v.begin(), v.end());
-  return v.size() % 2 ? v[v.size() / 2] : 0.5 * (v[v.size() / 2 - 1] + v[v.size() / 2]);
 }
 
 bool loadCloudAnyFormat(const std::string& stem, PointList* points, std::string* error) {

@@ -23,6 +23,7 @@
 #include "pda_registration/tools/cloud_io.hpp"
 #include "pda_registration/tools/command_line.hpp"
 #include "pda_registration/tools/json_line.hpp"
+#include "pda_registration/tools/statistics.hpp"
 
 using namespace pda_registration;
 
@@ -31,12 +32,6 @@ namespace {
 int fail(const std::string& message) {
   std::cerr << "pda_latency_probe: error: " << message << "\n";
   return 2;
-}
-
-double percentile(std::vector<double> values, double q) {
-  if (values.empty()) return 0.0;
-  std::sort(values.begin(), values.end());
-  return values[static_cast<size_t>(q * (values.size() - 1) + 0.5)];
 }
 
 }  // namespace

@@ -53,15 +53,6 @@ int usageError(const std::string& message) {
   return 2;
 }
 
-std::string matrixJson(const Eigen::Isometry3d& T) {
-  std::ostringstream out;
-  out.precision(10);
-  out << '[';
-  for (int i = 0; i < 16; ++i) out << (i ? "," : "") << T.matrix()(i / 4, i % 4);
-  out << ']';
-  return out.str();
-}
-
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -152,7 +143,7 @@ int main(int argc, char** argv) {
         .add("tf_messages", summary.tf_messages);
     bag_json.add("ground_truth_messages", summary.ground_truth_messages);
     bag_json.add("seed_error_deg", seed_error_deg).add("seed_error_m", seed_error_m);
-    bag_json.addRaw("T_seed", matrixJson(T_seed));
+    bag_json.add("T_seed", T_seed);
   }
 
   JsonLine json;
@@ -162,7 +153,7 @@ int main(int argc, char** argv) {
   json.add("velodyne_revolutions", options.velodyne_revolutions);
   json.add("sparse_points", maps.sparse.size()).add("distortion", options.distortion);
   json.add("noise", options.kinect.noise).add("simulation_ms", simulation_ms);
-  json.addRaw("T_target_source", matrixJson(maps.T_target_source));
+  json.add("T_target_source", maps.T_target_source);
   json.addRaw("files", files.str());
   if (cl.has("bag")) json.addRaw("bag", bag_json.str());
   std::cout << json.str() << std::endl;

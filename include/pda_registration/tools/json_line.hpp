@@ -1,6 +1,7 @@
 #pragma once
 // Builds one JSON object on one line, for machine-readable tool output.
 
+#include <Eigen/Geometry>
 #include <sstream>
 #include <string>
 
@@ -16,6 +17,8 @@ class JsonLine {
   JsonLine& add(const std::string& key, bool value);
   JsonLine& add(const std::string& key, const std::string& value);
   JsonLine& add(const std::string& key, const char* value) { return add(key, std::string(value)); }
+  /// A transform as 16 numbers, row-major.
+  JsonLine& add(const std::string& key, const Eigen::Isometry3d& T);
   /// Inserts an already-formatted JSON value (an object or array).
   JsonLine& addRaw(const std::string& key, const std::string& json);
   std::string str() const { return "{" + body_.str() + "}"; }
