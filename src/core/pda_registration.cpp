@@ -292,16 +292,19 @@ RegistrationResult PdaRegistration::alignUnchecked(const PointList& source_input
     return result;
   }
 
-  // Two stages. Approach: the full radius, on a strided subset of the source (the runs only
-  // need to bring the estimate close, at a fraction of the cost), until a run moves less than 10
-  // epsilons. Refine: every point, the shrinking radius, until a run moves less than the
-  // epsilons. Single-run mode (the paper's) is one refine run at the full radius.
+  // Three stages, each until a run moves less than 10 epsilons (the last: less than the
+  // epsilons). Approach: the full radius on a strided subset of the source (these runs only need
+  // to bring the estimate close, at a fraction of the cost). Settle: the full radius on every
+  // point (a subset can stall where the whole cloud would not). Refine: every point, the
+  // shrinking radius. Single-run mode (the paper's) is one refine run at the full radius.
   PointList coarse_source;
   if (p.max_runs > 1 && p.coarse_stride > 1 &&
       source.size() / p.coarse_stride >= 20 * static_cast<size_t>(p.min_correspondences)) {
     for (size_t j = 0; j < source.size(); j += p.coarse_stride) coarse_source.push_back(source[j]);
   }
-  bool approach_stage = p.max_runs > 1;
+  enum class Stage { kApproach, kSettle, kRefine };
+  Stage stage = p.max_runs == 1 ? Stage::kRefine
+                                : (coarse_source.empty() ? Stage::kSettle : Stage::kApproach);
 
   EmState state;
   state.T = T;
@@ -311,8 +314,10 @@ RegistrationResult PdaRegistration::alignUnchecked(const PointList& source_input
   bool em_settled = false;  // did the last run's EM loop stop on the epsilons?
 
   for (int run = 1; run <= p.max_runs; ++run) {
-    const PointList& active = approach_stage && !coarse_source.empty() ? coarse_source : source;
-    const double radius = approach_stage ? p.radius : candidateRadius(p, state.sigma_squared);
+    const PointList& active = stage == Stage::kApproach ? coarse_source : source;
+    const double radius = stage == Stage::kRefine && p.max_runs > 1
+                              ? candidateRadius(p, state.sigma_squared)
+                              : p.radius;
     candidates = findCandidateSets(*index, active, state.T, p.k, radius, p.threads);
     result.runs = run;
     result.source_points_with_candidates = candidates.sourcePointsWithCandidates();
@@ -331,9 +336,11 @@ RegistrationResult PdaRegistration::alignUnchecked(const PointList& source_input
       return result;
     }
     last_run_step = incrementBetween(T_run_start, state.T);
-    if (approach_stage) {
-      approach_stage = !(last_run_step.translation <= 10.0 * p.translation_epsilon &&
-                         last_run_step.rotation <= 10.0 * p.rotation_epsilon);
+    if (stage != Stage::kRefine) {
+      if (last_run_step.translation <= 10.0 * p.translation_epsilon &&
+          last_run_step.rotation <= 10.0 * p.rotation_epsilon) {
+        stage = stage == Stage::kApproach ? Stage::kSettle : Stage::kRefine;
+      }
       continue;  // convergence is only declared in the refine stage
     }
     if (isSmall(last_run_step, p)) {
