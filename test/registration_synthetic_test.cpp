@@ -48,8 +48,9 @@ TEST_P(SyntheticRegistration, RecoversKnownTransformWithNoiseAndOutliers) {
   EXPECT_LT(error.translation, 0.01);
   EXPECT_LT(error.rotation_deg, 0.2);
   EXPECT_GT(r.runs, 1);
-  // 30% outliers against 70% inliers with 1 cm noise: the inlier share and sigma say so.
-  EXPECT_GT(r.inlier_fraction, 0.6);
+  // 600 outliers among 2600 points (77% inliers, 1 cm noise): the inlier share says so.
+  EXPECT_GT(r.inlier_fraction, 0.5);
+  EXPECT_LT(r.inlier_fraction, 0.85);
   EXPECT_LT(r.sigma, 0.05);
 }
 

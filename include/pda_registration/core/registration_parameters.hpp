@@ -33,7 +33,7 @@ struct RegistrationParameters {
   /// kappa of the noise shape (noise_model.hpp): how much less a residual along the target
   /// surface counts than one across it. 1 = the paper's isotropic Sigma = sigma^2 I.
   double surface_anisotropy = 1000.0;
-  double normal_voxel_size = 0.1;  ///< [length] voxel of the target normal map (> 0)
+  double normal_voxel_size = 0.15; ///< [length] voxel of the target normal map (> 0)
   // --- EM loop inside one run (candidate sets fixed) ----------------------------------------
   int max_em_iterations = 5;
   // --- Multiple runs (candidate sets recomputed from the current estimate) ------------------
