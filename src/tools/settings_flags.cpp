@@ -74,36 +74,45 @@ std::string settingsFlagsHelp() {
   return help.str();
 }
 
-bool readSettingsFlags(CommandLine* cl, MethodSettings* settings) {
+bool readSettingsFlags(CommandLine* cl, MethodSettings* settings,
+                       const std::set<std::string>& skip) {
   RegistrationParameters& p = settings->pda;
   BaselineParameters& b = settings->baseline;
   const double inf = std::numeric_limits<double>::infinity();
-  if (!cl->integer("k", &p.k, 1, 1000) || !cl->number("radius", &p.radius, 1e-9, 1e9) ||
-      !cl->number("nu", &p.nu, 1e-6, inf) || !cl->integer("runs", &p.max_runs, 1, 1000) ||
-      !cl->integer("em-iterations", &p.max_em_iterations, 1, 1000) ||
-      !cl->number("fixed-sigma", &p.fixed_sigma, 1e-12, 1e9) ||
-      !cl->integer("threads", &p.threads, 1, 256) ||
-      !cl->number("source-voxel", &p.source_voxel_size, 0.0, 1e6) ||
-      !cl->number("target-voxel", &p.target_voxel_size, 0.0, 1e6) ||
-      !cl->number("translation-epsilon", &p.translation_epsilon, 0.0, 1e6) ||
-      !cl->number("rotation-epsilon", &p.rotation_epsilon, 0.0, 3.2) ||
-      !cl->integer("min-correspondences", &p.min_correspondences, 3, 100000000) ||
-      !cl->integer("max-iterations", &b.max_iterations, 1, 100000) ||
-      !cl->number("ndt-resolution", &b.ndt_resolution, 1e-6, 1e6) ||
-      !cl->number("ndt-step-size", &b.ndt_step_size, 1e-9, 1e6) ||
-      !cl->number("anisotropy", &p.surface_anisotropy, 1.0, 1e12) ||
-      !cl->number("normal-voxel", &p.normal_voxel_size, 1e-9, 1e6) ||
-      !cl->integer("solver-iterations", &p.solver_max_iterations, 1, 1000) ||
-      !cl->integer("coarse-stride", &p.coarse_stride, 1, 1000) ||
-      !cl->number("ndt-epsilon", &b.ndt_transformation_epsilon, 0.0, 1e3) ||
-      !cl->number("min-radius", &p.min_radius, 1e-9, 1e9)) {
+  // Skipped flags are left to the caller (e.g. pda_bag_eval reads them as lists).
+  const auto integer = [&](const char* flag, int* value, int min, int max) {
+    return skip.count(flag) > 0 || cl->integer(flag, value, min, max);
+  };
+  const auto number = [&](const char* flag, double* value, double min, double max) {
+    return skip.count(flag) > 0 || cl->number(flag, value, min, max);
+  };
+  const auto given = [&](const char* flag) { return skip.count(flag) == 0 && cl->has(flag); };
+  if (!integer("k", &p.k, 1, 1000) || !number("radius", &p.radius, 1e-9, 1e9) ||
+      !number("nu", &p.nu, 1e-6, inf) || !integer("runs", &p.max_runs, 1, 1000) ||
+      !integer("em-iterations", &p.max_em_iterations, 1, 1000) ||
+      !number("fixed-sigma", &p.fixed_sigma, 1e-12, 1e9) ||
+      !integer("threads", &p.threads, 1, 256) ||
+      !number("source-voxel", &p.source_voxel_size, 0.0, 1e6) ||
+      !number("target-voxel", &p.target_voxel_size, 0.0, 1e6) ||
+      !number("translation-epsilon", &p.translation_epsilon, 0.0, 1e6) ||
+      !number("rotation-epsilon", &p.rotation_epsilon, 0.0, 3.2) ||
+      !integer("min-correspondences", &p.min_correspondences, 3, 100000000) ||
+      !integer("max-iterations", &b.max_iterations, 1, 100000) ||
+      !number("ndt-resolution", &b.ndt_resolution, 1e-6, 1e6) ||
+      !number("ndt-step-size", &b.ndt_step_size, 1e-9, 1e6) ||
+      !number("anisotropy", &p.surface_anisotropy, 1.0, 1e12) ||
+      !number("normal-voxel", &p.normal_voxel_size, 1e-9, 1e6) ||
+      !integer("solver-iterations", &p.solver_max_iterations, 1, 1000) ||
+      !integer("coarse-stride", &p.coarse_stride, 1, 1000) ||
+      !number("ndt-epsilon", &b.ndt_transformation_epsilon, 0.0, 1e3) ||
+      !number("min-radius", &p.min_radius, 1e-9, 1e9)) {
     return false;
   }
-  if (cl->has("solver") && !parseSolver(cl->text("solver"), &p.solver)) {
+  if (given("solver") && !parseSolver(cl->text("solver"), &p.solver)) {
     return cl->setError("--solver: '" + cl->text("solver") +
                         "' is not gauss_newton, closed_form or ceres");
   }
-  if (cl->has("sigma-mode") && !parseSigmaMode(cl->text("sigma-mode"), &p.sigma_mode)) {
+  if (given("sigma-mode") && !parseSigmaMode(cl->text("sigma-mode"), &p.sigma_mode)) {
     return cl->setError("--sigma-mode: '" + cl->text("sigma-mode") + "' is not estimated or fixed");
   }
   // The baselines share the inputs' limits: same radius, same voxel sizes.

@@ -17,7 +17,8 @@ std::set<std::string> settingsFlagNames();
 std::string settingsFlagsHelp();
 
 /// Applies the flags present on the command line to *settings; false on a bad value
-/// (command_line->error() says which).
-bool readSettingsFlags(CommandLine* command_line, MethodSettings* settings);
+/// (command_line->error() says which). Flags in `skip` are left untouched.
+bool readSettingsFlags(CommandLine* command_line, MethodSettings* settings,
+                       const std::set<std::string>& skip = {});
 
 }  // namespace pda_registration
