@@ -8,6 +8,7 @@
 #include <tf2_msgs/TFMessage.h>
 
 #include <algorithm>
+#include <cctype>
 
 namespace pda_registration {
 namespace {
@@ -15,6 +16,12 @@ namespace {
 // tf2 stores frame ids without a leading slash (ROS 1 style "/map") but refuses one in lookups.
 std::string tfFrame(const std::string& frame) {
   return !frame.empty() && frame[0] == '/' ? frame.substr(1) : frame;
+}
+
+// tf's messages end in a space; the reports quote them at the end of a line.
+std::string trimmed(std::string text) {
+  while (!text.empty() && std::isspace(static_cast<unsigned char>(text.back()))) text.pop_back();
+  return text;
 }
 
 }  // namespace
@@ -72,7 +79,7 @@ Seed BagTransforms::seed(const std::string& dense_frame, const std::string& spar
     seed.source = SeedSource::kTfAtStamp;
     return seed;
   } catch (const tf2::TransformException& at_stamp) {
-    seed.detail = at_stamp.what();
+    seed.detail = trimmed(at_stamp.what());
   }
   try {
     // The buffer holds the whole bag, so "latest" may lie after the cloud: only use it if not.

@@ -79,7 +79,9 @@ class Progress {
       : total_(total), sets_(sets), messages_(messages), terminal_(isatty(STDERR_FILENO) != 0) {}
 
   void starting(size_t set, size_t message) {
-    if (terminal_) std::cerr << "\r" << line(done_ + 1, set, message) << std::flush;
+    if (!terminal_) return;
+    std::cerr << "\r" << line(done_ + set, set, message) << std::flush;
+    line_open_ = true;
   }
   void finished(size_t alignments, size_t message) {
     done_ += alignments;
@@ -87,10 +89,12 @@ class Progress {
   }
   /// Prints a message on its own line, clearing the progress line first.
   void note(const std::string& text) {
-    std::cerr << (terminal_ ? "\r\033[K" : "") << kToolName << ": " << text << "\n";
+    std::cerr << (line_open_ ? "\r\033[K" : "") << kToolName << ": " << text << "\n";
+    line_open_ = false;
   }
   void end() {
-    if (terminal_ && done_ > 0) std::cerr << "\n";
+    if (line_open_) std::cerr << "\n";
+    line_open_ = false;
   }
 
  private:
@@ -102,7 +106,7 @@ class Progress {
   }
 
   size_t total_, sets_, messages_, done_ = 0;
-  bool terminal_;
+  bool terminal_, line_open_ = false;
 };
 
 struct Options {
@@ -126,7 +130,6 @@ struct RunCounts {
 std::string gridDescription(const CommandLine& cl, const std::vector<ParameterSet>& sets) {
   std::ostringstream text;
   text << sets.size() << " parameter set" << (sets.size() == 1 ? "" : "s") << ":";
-  const RegistrationParameters defaults;
   for (size_t a = 0; a < gridFlagNames().size(); ++a) {
     std::vector<std::string> values;
     for (const ParameterSet& set : sets) {
@@ -222,17 +225,6 @@ int main(int argc, char** argv) {
     return usageError(cl.error());
   }
 
-  // Output files are opened first, so an unusable path fails before a long run.
-  std::ofstream csv, summary_file;
-  if (cl.has("csv")) {
-    csv.open(options.csv_path);
-    if (!csv) return usageError("--csv: cannot write '" + options.csv_path + "'");
-  }
-  if (cl.has("summary")) {
-    summary_file.open(options.summary_path);
-    if (!summary_file) return usageError("--summary: cannot write '" + options.summary_path + "'");
-  }
-
   BagMaps bag;
   BagTransforms transforms;
   std::string error;
@@ -247,6 +239,17 @@ int main(int argc, char** argv) {
   } catch (const std::exception& e) {
     return usageError("cannot read bag '" + options.bag_path + "': " + e.what());
   }
+  // Output files are opened before the alignments, so an unusable path fails at once.
+  std::ofstream csv, summary_file;
+  if (cl.has("csv")) {
+    csv.open(options.csv_path);
+    if (!csv) return usageError("--csv: cannot write '" + options.csv_path + "'");
+  }
+  if (cl.has("summary")) {
+    summary_file.open(options.summary_path);
+    if (!summary_file) return usageError("--summary: cannot write '" + options.summary_path + "'");
+  }
+
   const bool ground_truth = transforms.hasGroundTruth();
   if (csv.is_open()) csv << csvHeader(ground_truth) << std::flush;
 
