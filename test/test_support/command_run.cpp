@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdlib>
+#include <filesystem>
 #include <fstream>
 #include <regex>
 
@@ -18,8 +19,24 @@ std::string readFile(const std::string& path) {
   return std::string(std::istreambuf_iterator<char>(file), std::istreambuf_iterator<char>());
 }
 
+namespace {
+// One directory per test process, removed when it exits (the bags and clouds add up otherwise).
+const std::string& processTemporaryDirectory() {
+  static const std::string directory = [] {
+    const std::string path = ::testing::TempDir() + "pda_test_" + std::to_string(getpid());
+    std::filesystem::create_directories(path);
+    std::atexit([] {
+      std::error_code ignored;
+      std::filesystem::remove_all(processTemporaryDirectory(), ignored);
+    });
+    return path;
+  }();
+  return directory;
+}
+}  // namespace
+
 std::string temporaryPath(const std::string& name) {
-  return ::testing::TempDir() + "pda_test_" + std::to_string(getpid()) + "_" + name;
+  return processTemporaryDirectory() + "/" + name;
 }
 
 CommandRun runCommand(const std::string& binary, const std::string& arguments) {
