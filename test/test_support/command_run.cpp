@@ -21,17 +21,18 @@ std::string readFile(const std::string& path) {
 
 namespace {
 // One directory per test process, removed when it exits (the bags and clouds add up otherwise).
+// Never destroyed, so the exit handler can still read it.
 const std::string& processTemporaryDirectory() {
-  static const std::string directory = [] {
-    const std::string path = ::testing::TempDir() + "pda_test_" + std::to_string(getpid());
-    std::filesystem::create_directories(path);
+  static const std::string* directory = [] {
+    auto* path = new std::string(::testing::TempDir() + "pda_test_" + std::to_string(getpid()));
+    std::filesystem::create_directories(*path);
     std::atexit([] {
       std::error_code ignored;
       std::filesystem::remove_all(processTemporaryDirectory(), ignored);
     });
     return path;
   }();
-  return directory;
+  return *directory;
 }
 }  // namespace
 
