@@ -63,12 +63,9 @@ std::vector<std::string> splitList(const std::string& text) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  std::set<std::string> value_flags = settingsFlagNames();
-  for (const char* flag : {"target", "source", "initial", "perturb", "seed", "output",
-                           "aligned-cloud", "ground-truth", "method", "compare", "repeat"}) {
-    value_flags.insert(flag);
-  }
-  CommandLine cl(value_flags, {"help"});
+  CommandLine cl =
+      commandLineWithSettings({"target", "source", "initial", "perturb", "seed", "output",
+                               "aligned-cloud", "ground-truth", "method", "compare", "repeat"});
   if (!cl.parse(argc, argv)) return usageError(cl.error());
   if (cl.has("help")) {
     std::cout << kUsage << settingsFlagsHelp();

@@ -190,12 +190,9 @@ std::string summaryMarkdown(const Options& options, const BagMaps& bag,
 }  // namespace
 
 int main(int argc, char** argv) {
-  std::set<std::string> value_flags = settingsFlagNames();
-  for (const char* flag : {"bag", "dense-topic", "sparse-topic", "ground-truth-topic", "csv",
-                           "summary", "max-messages", "success"}) {
-    value_flags.insert(flag);
-  }
-  CommandLine cl(value_flags, {"help"});
+  CommandLine cl =
+      commandLineWithSettings({"bag", "dense-topic", "sparse-topic", "ground-truth-topic", "csv",
+                               "summary", "max-messages", "success"});
   if (!cl.parse(argc, argv)) return usageError(cl.error());
   if (cl.has("help")) {
     std::cout << kUsage << settingsFlagsHelp();

@@ -75,12 +75,8 @@ int fail(const std::string& message) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  std::set<std::string> value_flags = settingsFlagNames();
-  for (const char* flag :
-       {"data", "cases", "levels", "trials", "methods", "success", "csv", "seed"}) {
-    value_flags.insert(flag);
-  }
-  CommandLine cl(value_flags, {"help"});
+  CommandLine cl = commandLineWithSettings(
+      {"data", "cases", "levels", "trials", "methods", "success", "csv", "seed"});
   if (!cl.parse(argc, argv)) return fail(cl.error());
   if (cl.has("help")) {
     std::cout << kUsage << settingsFlagsHelp();

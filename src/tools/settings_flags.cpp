@@ -31,6 +31,12 @@ std::set<std::string> settingsFlagNames() {
           "min-radius"};
 }
 
+CommandLine commandLineWithSettings(const std::set<std::string>& tool_value_flags) {
+  std::set<std::string> value_flags = settingsFlagNames();
+  value_flags.insert(tool_value_flags.begin(), tool_value_flags.end());
+  return CommandLine(value_flags, {"help"});
+}
+
 std::string settingsFlagsHelp() {
   const RegistrationParameters p;
   const BaselineParameters b;

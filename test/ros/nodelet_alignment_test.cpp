@@ -110,13 +110,3 @@ TEST_F(NodeletAlignment, ConvergesToGroundTruthAndPublishesEverything) {
 
 }  // namespace
 }  // namespace pda_registration
-
-int main(int argc, char** argv) {
-  ::testing::InitGoogleTest(&argc, argv);
-  ros::init(argc, argv, "nodelet_alignment_test");
-  ros::AsyncSpinner spinner(2);
-  spinner.start();
-  const int result = RUN_ALL_TESTS();
-  ros::shutdown();
-  return result;
-}

@@ -121,13 +121,3 @@ TEST_F(NodeletBadInput, G_NoOverlapIsRejectedAndTheLastGoodEstimateStays) {
 
 }  // namespace
 }  // namespace pda_registration
-
-int main(int argc, char** argv) {
-  ::testing::InitGoogleTest(&argc, argv);
-  ros::init(argc, argv, "nodelet_bad_input_test");
-  ros::AsyncSpinner spinner(2);
-  spinner.start();
-  const int result = RUN_ALL_TESTS();
-  ros::shutdown();
-  return result;
-}

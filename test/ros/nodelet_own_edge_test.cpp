@@ -37,13 +37,3 @@ TEST(NodeletOwnEdge, SeedsFromInitialTransformThenFromItsOwnEstimate) {
 
 }  // namespace
 }  // namespace pda_registration
-
-int main(int argc, char** argv) {
-  ::testing::InitGoogleTest(&argc, argv);
-  ros::init(argc, argv, "nodelet_own_edge_test");
-  ros::AsyncSpinner spinner(2);
-  spinner.start();
-  const int result = RUN_ALL_TESTS();
-  ros::shutdown();
-  return result;
-}

@@ -13,6 +13,9 @@ namespace pda_registration {
 /// Flag names (without "--") read by readSettingsFlags.
 std::set<std::string> settingsFlagNames();
 
+/// A parser for a tool: the shared registration flags, the tool's own value flags, and --help.
+CommandLine commandLineWithSettings(const std::set<std::string>& tool_value_flags);
+
 /// Help text for those flags, one per line, with defaults.
 std::string settingsFlagsHelp();
 
