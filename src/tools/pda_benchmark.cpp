@@ -14,8 +14,7 @@
 
 #include "pda_registration/core/error_metrics.hpp"
 #include "pda_registration/core/perturbation.hpp"
-#include "pda_registration/core/transform_io.hpp"
-#include "pda_registration/tools/cloud_io.hpp"
+#include "pda_registration/tools/case_folder.hpp"
 #include "pda_registration/tools/command_line.hpp"
 #include "pda_registration/tools/method_runner.hpp"
 #include "pda_registration/tools/settings_flags.hpp"
@@ -58,13 +57,6 @@ std::vector<std::string> split(const std::string& text, char separator) {
     if (!item.empty()) items.push_back(item);
   }
   return items;
-}
-
-bool loadCloudAnyFormat(const std::string& stem, PointList* points, std::string* error) {
-  if (loadPointCloudFile(stem + ".pcd", points, error)) return true;
-  std::string ply_error;
-  if (loadPointCloudFile(stem + ".ply", points, &ply_error)) return true;
-  return false;
 }
 
 int fail(const std::string& message) {
@@ -122,15 +114,14 @@ int main(int argc, char** argv) {
 
   std::vector<Trial> all;
   for (const std::string& name : cases) {
-    PointList target, source;
-    Eigen::Isometry3d truth;
+    CaseFolder loaded;
     std::string error;
-    const std::string folder = data + "/" + name + "/";
-    if (!loadCloudAnyFormat(folder + "target", &target, &error) ||
-        !loadCloudAnyFormat(folder + "source", &source, &error) ||
-        !readTransformFile(folder + "T_target_source.txt", &truth, &error)) {
+    if (!loadCaseFolder(data + "/" + name, &loaded, &error)) {
       return fail("case '" + name + "': " + error);
     }
+    const PointList& target = loaded.target;
+    const PointList& source = loaded.source;
+    const Eigen::Isometry3d truth = loaded.T_target_source;
     for (const Level& level : levels) {
       for (int t = 0; t < trials; ++t) {
         const int seed = first_seed + t;

@@ -6,9 +6,8 @@
 #include <iostream>
 
 #include "pda_registration/core/perturbation.hpp"
-#include "pda_registration/core/transform_io.hpp"
 #include "pda_registration/simulation/map_bag_writer.hpp"
-#include "pda_registration/tools/cloud_io.hpp"
+#include "pda_registration/tools/case_folder.hpp"
 #include "pda_registration/tools/command_line.hpp"
 #include "pda_registration/tools/json_line.hpp"
 
@@ -27,11 +26,6 @@ const char* kUsage =
 int fail(const std::string& message) {
   std::cerr << "pda_case_bag: error: " << message << "\n";
   return 2;
-}
-
-bool loadEither(const std::string& stem, PointList* points, std::string* error) {
-  return loadPointCloudFile(stem + ".pcd", points, error) ||
-         loadPointCloudFile(stem + ".ply", points, error);
 }
 
 }  // namespace
@@ -53,15 +47,12 @@ int main(int argc, char** argv) {
       !cl.integer("sparse-messages", &options.sparse_messages, 1, 100)) {
     return fail(cl.error());
   }
-  const std::string folder = cl.text("case") + "/";
-  PointList target, source;
-  Eigen::Isometry3d truth;
+  CaseFolder loaded;
   std::string error;
-  if (!loadEither(folder + "target", &target, &error) ||
-      !loadEither(folder + "source", &source, &error) ||
-      !readTransformFile(folder + "T_target_source.txt", &truth, &error)) {
-    return fail(error);
-  }
+  if (!loadCaseFolder(cl.text("case"), &loaded, &error)) return fail(error);
+  const PointList& target = loaded.target;
+  const PointList& source = loaded.source;
+  const Eigen::Isometry3d truth = loaded.T_target_source;
   const Eigen::Isometry3d seed_transform = truth * randomPerturbation(degrees, metres, seed);
   simulation::MapBagSummary summary;
   if (!simulation::writeMapBag(cl.text("bag"), target, source, truth, seed_transform, options,

@@ -18,9 +18,8 @@
 
 #include "pda_registration/core/error_metrics.hpp"
 #include "pda_registration/core/perturbation.hpp"
-#include "pda_registration/core/transform_io.hpp"
 #include "pda_registration/ros/point_cloud_conversion.hpp"
-#include "pda_registration/tools/cloud_io.hpp"
+#include "pda_registration/tools/case_folder.hpp"
 #include "pda_registration/tools/command_line.hpp"
 #include "pda_registration/tools/json_line.hpp"
 #include "pda_registration/tools/statistics.hpp"
@@ -50,15 +49,12 @@ int main(int argc, char** argv) {
   if (!cl.integer("count", &count, 1, 100000) || !cl.number("timeout", &timeout, 0.1, 3600)) {
     return fail(cl.error());
   }
-  const std::string folder = cl.text("case") + "/";
-  PointList target, source;
-  Eigen::Isometry3d truth;
+  CaseFolder loaded;
   std::string error;
-  if (!loadPointCloudFile(folder + "target.pcd", &target, &error) ||
-      !loadPointCloudFile(folder + "source.pcd", &source, &error) ||
-      !readTransformFile(folder + "T_target_source.txt", &truth, &error)) {
-    return fail(error);
-  }
+  if (!loadCaseFolder(cl.text("case"), &loaded, &error)) return fail(error);
+  const PointList& target = loaded.target;
+  const PointList& source = loaded.source;
+  const Eigen::Isometry3d truth = loaded.T_target_source;
 
   ros::NodeHandle node;
   ros::Publisher dense = node.advertise<sensor_msgs::PointCloud2>("dense_cloud", 1, true);

@@ -2,9 +2,6 @@
 
 #include <cstdlib>
 
-#include "pda_registration/core/transform_io.hpp"
-#include "pda_registration/tools/cloud_io.hpp"
-
 namespace pda_registration {
 namespace testing_support {
 
@@ -18,11 +15,8 @@ std::vector<std::string> sharedCaseNames() {
 }
 
 bool loadSharedCase(const std::string& name, SharedCase* c, std::string* error) {
-  const std::string directory = sharedDataDirectory() + "/" + name + "/";
   c->name = name;
-  return loadPointCloudFile(directory + "target.pcd", &c->target, error) &&
-         loadPointCloudFile(directory + "source.pcd", &c->source, error) &&
-         readTransformFile(directory + "T_target_source.txt", &c->T_target_source, error);
+  return loadCaseFolder(sharedDataDirectory() + "/" + name, c, error);
 }
 
 }  // namespace testing_support

@@ -7,14 +7,13 @@
 #include <vector>
 
 #include "pda_registration/core/point_list.hpp"
+#include "pda_registration/tools/case_folder.hpp"
 
 namespace pda_registration {
 namespace testing_support {
 
-struct SharedCase {
+struct SharedCase : CaseFolder {
   std::string name;
-  PointList target, source;
-  Eigen::Isometry3d T_target_source = Eigen::Isometry3d::Identity();
 };
 
 std::string sharedDataDirectory();
