@@ -179,57 +179,37 @@ PdaRegistration::PdaRegistration(const RegistrationParameters& parameters)
     : parameters_(parameters) {}
 
 void PdaRegistration::setParameters(const RegistrationParameters& parameters) {
-  const bool reindex = parameters.target_voxel_size != parameters_.target_voxel_size;
-  const bool renormal = parameters.normal_voxel_size != parameters_.normal_voxel_size;
   parameters_ = parameters;
-  if (reindex && hasTarget()) {
-    rebuildIndex();
-  } else if (renormal && hasTarget()) {
-    rebuildNormals();
-  }
+  // A whole-cloud index follows a new voxel size right away (off the alignment's clock);
+  // a cropped one is rebuilt by the next align(), which knows the region.
+  const TargetIndexing how = indexing();
+  if (hasTarget() && !target_map_.croppingApplies(how)) target_map_.prepare(how, AlignedBox());
+}
+
+TargetIndexing PdaRegistration::indexing() const {
+  TargetIndexing indexing;
+  const double voxel = parameters_.target_voxel_size;
+  indexing.voxel_size = voxel > 0.0 && std::isfinite(voxel) ? voxel : 0.0;
+  indexing.normal_voxel_size = parameters_.normal_voxel_size;
+  indexing.crop_above_points =
+      parameters_.crop_above_points > 0 ? static_cast<size_t>(parameters_.crop_above_points) : 0;
+  return indexing;
 }
 
 bool PdaRegistration::setTarget(PointList target) {
-  target_index_.reset();
-  target_dropped_ = removeNonFinitePoints(&target);
-  raw_target_ = std::move(target);
-  rebuildIndex();
-  return hasTarget();
-}
-
-void PdaRegistration::rebuildIndex() {
-  // Without downsampling the index holds the raw points itself, so only a downsampled index
-  // needs the raw copy kept beside it.
-  if (raw_target_.empty() && target_index_) raw_target_ = target_index_->points();
-  target_index_.reset();
-  normal_map_.reset();
-  const double voxel = parameters_.target_voxel_size;
-  try {
-    if (voxel > 0.0 && std::isfinite(voxel)) {
-      target_index_ = std::make_shared<const TargetIndex>(voxelDownsample(raw_target_, voxel));
-    } else {
-      target_index_ = std::make_shared<const TargetIndex>(std::move(raw_target_));
-      raw_target_.clear();
-    }
-  } catch (const std::exception&) {
-    target_index_.reset();  // out of memory: align() reports "no target"
-    return;
+  if (!target_map_.setCloud(std::move(target))) return false;
+  const TargetIndexing how = indexing();
+  if (target_map_.croppingApplies(how)) return true;  // indexed by align(), around each source
+  if (!target_map_.prepare(how, AlignedBox())) {
+    target_map_.clear();
+    return false;
   }
-  rebuildNormals();
-}
-
-void PdaRegistration::rebuildNormals() {
-  try {
-    normal_map_ = std::make_shared<const SurfaceNormalMap>(target_index_->points(),
-                                                           parameters_.normal_voxel_size);
-  } catch (const std::exception&) {
-    normal_map_ = std::make_shared<const SurfaceNormalMap>();  // no normals: isotropic fallback
-  }
+  return true;
 }
 
 RegistrationResult PdaRegistration::align(const PointList& source,
                                           const Eigen::Isometry3d& T_target_source_initial,
-                                          Associations* associations) const {
+                                          Associations* associations) {
   if (associations) *associations = Associations();
   const auto start = std::chrono::steady_clock::now();
   RegistrationResult result;
@@ -253,7 +233,7 @@ RegistrationResult PdaRegistration::align(const PointList& source,
 
 RegistrationResult PdaRegistration::alignUnchecked(const PointList& source_input,
                                                    const Eigen::Isometry3d& T_target_source_initial,
-                                                   Associations* associations) const {
+                                                   Associations* associations) {
   const RegistrationParameters& p = parameters_;
   RegistrationResult result;
   result.T_target_source = T_target_source_initial;
@@ -268,16 +248,12 @@ RegistrationResult PdaRegistration::alignUnchecked(const PointList& source_input
     result.reason = "initial transform is not a finite rigid transform";
     return result;
   }
-  // Local copies of the shared pointers: a concurrent setTarget() cannot pull them away.
-  const std::shared_ptr<const TargetIndex> index = target_index_;
-  const std::shared_ptr<const SurfaceNormalMap> normal_map =
-      normal_map_ ? normal_map_ : std::make_shared<const SurfaceNormalMap>();
-  result.target_points_dropped = target_dropped_;
-  if (!index || index->size() == 0) {
+  result.target_points_dropped = target_map_.droppedPoints();
+  result.target_points_total = target_map_.cloudSize();
+  if (!hasTarget()) {
     result.reason = "target cloud is empty (no finite points)";
     return result;
   }
-  result.target_points_used = index->size();
 
   PointList source = source_input;
   result.source_points_dropped = removeNonFinitePoints(&source);
@@ -291,6 +267,26 @@ RegistrationResult PdaRegistration::alignUnchecked(const PointList& source_input
     result.reason = reason.str();
     return result;
   }
+
+  // A large target is indexed around the region this source can reach from its seed.
+  const TargetIndexing how = indexing();
+  AlignedBox reach;
+  if (target_map_.croppingApplies(how)) {
+    reach = reachableRegion(source, T, p.crop_max_translation,
+                            p.crop_max_rotation_deg * M_PI / 180.0, p.radius);
+  }
+  const size_t builds_before = target_map_.builds();
+  if (!target_map_.prepare(how, reach)) {
+    result.reason = "no overlap: the target has no point within reach of the source (bounds "
+                    "plus crop_max_translation, crop_max_rotation_deg and radius)";
+    return result;
+  }
+  if (target_map_.builds() != builds_before) result.target_index_ms = target_map_.lastBuildMs();
+  result.target_cropped = target_map_.cropped();
+  const std::shared_ptr<const TargetIndex> index = target_map_.index();
+  const std::shared_ptr<const SurfaceNormalMap> normal_map =
+      target_map_.normals() ? target_map_.normals() : std::make_shared<const SurfaceNormalMap>();
+  result.target_points_used = index->size();
 
   // Three stages, each until a run moves less than 10 epsilons (the last: less than the
   // epsilons). Approach: the full radius on a strided subset of the source (these runs only need

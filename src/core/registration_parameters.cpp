@@ -40,6 +40,12 @@ std::string validateParameters(const RegistrationParameters& p) {
     error << "normal_voxel_size must be > 0 and finite (got " << p.normal_voxel_size << ")";
   else if (!finiteNonNegative(p.source_voxel_size) || !finiteNonNegative(p.target_voxel_size))
     error << "voxel sizes must be >= 0 and finite (0 disables downsampling)";
+  else if (p.crop_above_points < 0)
+    error << "crop_above_points must be >= 0 (got " << p.crop_above_points << ")";
+  else if (!finiteNonNegative(p.crop_max_translation))
+    error << "crop_max_translation must be >= 0 and finite (got " << p.crop_max_translation << ")";
+  else if (!(p.crop_max_rotation_deg >= 0.0 && p.crop_max_rotation_deg <= 180.0))
+    error << "crop_max_rotation_deg must be in [0, 180] (got " << p.crop_max_rotation_deg << ")";
   else if (p.min_correspondences < 3)
     error << "min_correspondences must be >= 3 (got " << p.min_correspondences << ")";
   else if (!finitePositive(p.inlier_sigmas))

@@ -30,6 +30,11 @@ LiveParameters liveParametersFrom(const PdaRegistrationConfig& c) {
   live.acceptance.min_inlier_fraction = c.min_inlier_fraction;
   live.acceptance.max_correction_translation = c.max_correction_translation;
   live.acceptance.max_correction_rotation = c.max_correction_rotation_deg * M_PI / 180.0;
+  // A large dense map is indexed around the sparse map's reach: as far as the gate lets a
+  // correction go, so cropping never hides the answer the gate would accept.
+  p.crop_above_points = c.crop_above_points;
+  p.crop_max_translation = live.acceptance.max_correction_translation;
+  p.crop_max_rotation_deg = c.max_correction_rotation_deg;
   live.min_interval = c.min_interval;
   live.max_markers = static_cast<size_t>(std::max(c.max_markers, 0));
   return live;

@@ -175,7 +175,7 @@ void MapAlignmentNodelet::updateDenseCloud(const sensor_msgs::PointCloud2ConstPt
   NODELET_INFO(
       "dense map from %s: %zu points (%zu non-finite dropped), ready in %.0f ms",
       dense_subscriber_.getTopic().c_str(),
-      settings_.dense_is_target ? registration_.target()->size() : dense_points_.size(),
+      settings_.dense_is_target ? registration_.targetCloudSize() : dense_points_.size(),
       converted.non_finite,
       std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count());
 }

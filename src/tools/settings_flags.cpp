@@ -28,7 +28,10 @@ std::set<std::string> settingsFlagNames() {
           "solver-iterations",
           "coarse-stride",
           "ndt-epsilon",
-          "min-radius"};
+          "min-radius",
+          "crop-above",
+          "crop-translation",
+          "crop-rotation"};
 }
 
 CommandLine commandLineWithSettings(const std::set<std::string>& tool_value_flags) {
@@ -72,6 +75,12 @@ std::string settingsFlagsHelp() {
        << "  --rotation-epsilon E    convergence threshold [rad] (" << p.rotation_epsilon << ")\n"
        << "  --min-correspondences N fewer source points with candidates = failure ("
        << p.min_correspondences << ")\n"
+       << "  --crop-above N          targets with more points are indexed only around the\n"
+       << "                          source's reach, 0 = never (" << p.crop_above_points << ")\n"
+       << "  --crop-translation M    largest correction a cropped target allows [m] ("
+       << p.crop_max_translation << ")\n"
+       << "  --crop-rotation DEG     largest rotation a cropped target allows [deg] ("
+       << p.crop_max_rotation_deg << ")\n"
        << "  --max-iterations N      ICP/GICP/NDT iterations (" << b.max_iterations << ")\n"
        << "  --ndt-resolution R      NDT cell size [m] (" << b.ndt_resolution << ")\n"
        << "  --ndt-step-size S       NDT step size [m] (" << b.ndt_step_size << ")\n"
@@ -111,7 +120,10 @@ bool readSettingsFlags(CommandLine* cl, MethodSettings* settings,
       !integer("solver-iterations", &p.solver_max_iterations, 1, 1000) ||
       !integer("coarse-stride", &p.coarse_stride, 1, 1000) ||
       !number("ndt-epsilon", &b.ndt_transformation_epsilon, 0.0, 1e3) ||
-      !number("min-radius", &p.min_radius, 1e-9, 1e9)) {
+      !number("min-radius", &p.min_radius, 1e-9, 1e9) ||
+      !integer("crop-above", &p.crop_above_points, 0, 2000000000) ||
+      !number("crop-translation", &p.crop_max_translation, 0.0, 1e9) ||
+      !number("crop-rotation", &p.crop_max_rotation_deg, 0.0, 180.0)) {
     return false;
   }
   if (given("solver") && !parseSolver(cl->text("solver"), &p.solver)) {

@@ -3,7 +3,8 @@
 // and the "multiple runs" outer loop.
 //
 //   PdaRegistration registration(parameters);
-//   registration.setTarget(dense_points);            // filtered and indexed once
+//   registration.setTarget(dense_points);            // filtered and indexed once (a large
+//                                                    // map: around each source's reach)
 //   RegistrationResult r = registration.align(sparse_points, T_initial);  // reuse for many sources
 //
 // align() never throws; a failure is a result with converged = false and a reason.
@@ -17,6 +18,7 @@
 #include "pda_registration/core/registration_result.hpp"
 #include "pda_registration/core/surface_normals.hpp"
 #include "pda_registration/core/target_index.hpp"
+#include "pda_registration/core/target_map.hpp"
 
 namespace pda_registration {
 
@@ -24,40 +26,41 @@ class PdaRegistration {
  public:
   explicit PdaRegistration(const RegistrationParameters& parameters = RegistrationParameters());
 
-  /// Takes effect from the next align(). Re-indexes the target only if target_voxel_size changed
-  /// and rebuilds the normal map only if normal_voxel_size (or the index) changed.
-  /// Invalid parameters are stored anyway and make align() report why.
+  /// Takes effect from the next align(). A change of target_voxel_size, normal_voxel_size or
+  /// crop_above_points re-indexes a whole-cloud target here and a cropped one in the next
+  /// align(). Invalid parameters are stored anyway and make align() report why.
   void setParameters(const RegistrationParameters& parameters);
   const RegistrationParameters& parameters() const { return parameters_; }
 
-  /// Drops non-finite points, downsamples (target_voxel_size), builds the search index and the
-  /// surface normal map.
-  /// Returns false (with the index cleared) when no finite point is left or indexing fails.
+  /// Drops non-finite points and keeps the cloud. A target of up to crop_above_points points is
+  /// downsampled (target_voxel_size) and indexed (kd-tree and surface normal map) here, once; a
+  /// larger one is indexed by align() around the region each source can reach (target_map.hpp).
+  /// Returns false (with the target cleared) when no finite point is left or indexing fails.
   bool setTarget(PointList target);
-  bool hasTarget() const { return target_index_ != nullptr && target_index_->size() > 0; }
-  /// The indexed target (after filtering); null before setTarget.
-  std::shared_ptr<const TargetIndex> target() const { return target_index_; }
-  size_t targetPointsDropped() const { return target_dropped_; }
+  bool hasTarget() const { return target_map_.cloudSize() > 0; }
+  /// Finite target points kept (before any downsampling or cropping).
+  size_t targetCloudSize() const { return target_map_.cloudSize(); }
+  /// The current index (after filtering, downsampling and cropping); null before it is built.
+  std::shared_ptr<const TargetIndex> target() const { return target_map_.index(); }
+  size_t targetPointsDropped() const { return target_map_.droppedPoints(); }
+  /// How many times the target has been indexed so far (tests and reports).
+  size_t targetIndexBuilds() const { return target_map_.builds(); }
 
   /// Aligns `source` to the target starting from T_target_source_initial. When `associations`
   /// is given, it receives the final weighted associations (empty when the alignment could not
-  /// run at all).
+  /// run at all). Not const: it may (re)index the part of a large target the source can reach.
   RegistrationResult align(const PointList& source,
                            const Eigen::Isometry3d& T_target_source_initial,
-                           Associations* associations = nullptr) const;
+                           Associations* associations = nullptr);
 
  private:
-  void rebuildIndex();
-  void rebuildNormals();
+  TargetIndexing indexing() const;
   RegistrationResult alignUnchecked(const PointList& source,
                                     const Eigen::Isometry3d& T_target_source_initial,
-                                    Associations* associations) const;
+                                    Associations* associations);
 
   RegistrationParameters parameters_;
-  PointList raw_target_;  // kept so a new target_voxel_size can re-index without a new cloud
-  size_t target_dropped_ = 0;
-  std::shared_ptr<const TargetIndex> target_index_;
-  std::shared_ptr<const SurfaceNormalMap> normal_map_;
+  TargetMap target_map_;
 };
 
 }  // namespace pda_registration

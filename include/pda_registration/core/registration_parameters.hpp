@@ -49,6 +49,12 @@ struct RegistrationParameters {
   // --- Pre-processing ------------------------------------------------------------------------
   double source_voxel_size = 0.0;  ///< [length] 0 = keep every source point
   double target_voxel_size = 0.0;  ///< [length] 0 = keep every target point
+  // --- Large targets ---------------------------------------------------------------------
+  /// Targets with more finite points than this are indexed only around the region each source
+  /// can reach (its seed-placed bounds plus the corrections below plus radius); 0 = never crop.
+  int crop_above_points = 500000;
+  double crop_max_translation = 1.0;  ///< [length] largest correction a cropped target allows
+  double crop_max_rotation_deg = 20.0;  ///< [deg] largest rotation a cropped target allows
   // --- Acceptance ----------------------------------------------------------------------------
   int min_correspondences = 10;  ///< fewer source points with candidates: not converged
   double inlier_sigmas = 3.0;    ///< a source point is an inlier if its best residual < this*sigma

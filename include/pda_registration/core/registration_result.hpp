@@ -23,13 +23,16 @@ struct RegistrationResult {
 
   size_t source_points_used = 0;             ///< finite source points after downsampling
   size_t source_points_dropped = 0;          ///< NaN/Inf source points dropped
-  size_t target_points_used = 0;             ///< target points indexed
+  size_t target_points_used = 0;             ///< target points indexed (after any crop)
+  size_t target_points_total = 0;            ///< finite target points kept (before any crop)
+  bool target_cropped = false;               ///< the index covers only the source's reach
+  double target_index_ms = 0.0;  ///< time this call spent (re)indexing the target (in time_ms)
   size_t target_points_dropped = 0;          ///< NaN/Inf target points dropped
   size_t source_points_with_candidates = 0;  ///< in the last run
   double inlier_fraction = 0.0;  ///< source points whose best residual is under inlier_sigmas*sigma
   double mean_residual = 0.0;    ///< [length] mean distance to the best candidate, inliers only
   double degeneracy_ratio = 0.0;  ///< min/max eigenvalue of the point-to-plane constraint matrix
-  double time_ms = 0.0;           ///< wall time of the alignment (target indexing excluded)
+  double time_ms = 0.0;  ///< wall time of align(), including any (re)indexing of a large target
 };
 
 }  // namespace pda_registration

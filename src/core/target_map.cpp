@@ -1,0 +1,157 @@
+#include "pda_registration/core/target_map.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <exception>
+
+#include "pda_registration/core/point_filter.hpp"
+
+namespace pda_registration {
+namespace {
+
+// A crop that keeps most of the cloud saves little and would be redone whenever the source
+// moves: index the whole cloud instead.
+constexpr double kWorthCroppingFraction = 0.7;
+// The indexed region extends this fraction of the needed region's size beyond it, so a source
+// that moves a little (the next scan of a robot) is still served by the same index.
+constexpr double kCropSlack = 0.25;
+
+}  // namespace
+
+AlignedBox AlignedBox::expanded(double margin) const {
+  AlignedBox out = *this;
+  if (empty()) return out;
+  out.min.array() -= margin;
+  out.max.array() += margin;
+  return out;
+}
+
+AlignedBox reachableRegion(const PointList& source, const Eigen::Isometry3d& T,
+                           double max_translation, double max_rotation, double radius) {
+  AlignedBox box;
+  if (source.empty()) return box;
+  Point centroid = Point::Zero();
+  for (const Point& p : source) {
+    const Point moved = T * p;
+    box.min = box.min.cwiseMin(moved);
+    box.max = box.max.cwiseMax(moved);
+    centroid += moved;
+  }
+  centroid /= static_cast<double>(source.size());
+  double farthest = 0.0;
+  for (const Point& p : source) farthest = std::max(farthest, (T * p - centroid).norm());
+  const double angle = std::min(std::abs(max_rotation), M_PI);
+  return box.expanded(std::abs(max_translation) + 2.0 * farthest * std::sin(0.5 * angle) +
+                      std::abs(radius));
+}
+
+size_t TargetMap::cloudSize() const {
+  if (!compact_.empty()) return compact_.size();
+  if (index_owns_cloud_ && index_) return index_->size();
+  return whole_.size();
+}
+
+bool TargetMap::setCloud(PointList points) {
+  clear();
+  dropped_ = removeNonFinitePoints(&points);
+  whole_ = std::move(points);
+  return !whole_.empty();
+}
+
+void TargetMap::clear() {
+  whole_.clear();
+  whole_.shrink_to_fit();
+  compact_.clear();
+  compact_.shrink_to_fit();
+  index_owns_cloud_ = false;
+  dropped_ = 0;
+  index_.reset();
+  normals_.reset();
+  have_indexing_ = false;
+  cropped_ = false;
+}
+
+bool TargetMap::prepare(const TargetIndexing& indexing, const AlignedBox& region) {
+  if (cloudSize() == 0) return false;
+  const bool crop = croppingApplies(indexing) && !region.empty();
+  if (index_ && have_indexing_ && indexing_ == indexing) {
+    if (!cropped_) return true;  // the whole cloud is indexed: serves every region
+    if (crop && indexed_region_.contains(region)) return true;
+  }
+  if (!crop) return build(indexing, nullptr);
+  const Point size = region.max - region.min;
+  const AlignedBox with_slack = region.expanded(kCropSlack * size.maxCoeff());
+  return build(indexing, &with_slack);
+}
+
+bool TargetMap::build(const TargetIndexing& indexing, const AlignedBox* crop) {
+  const auto start = std::chrono::steady_clock::now();
+  // Recover the cloud from an index that took it over; large clouds move to single precision
+  // once they are first cropped.
+  if (index_owns_cloud_ && index_) whole_ = index_->points();
+  index_owns_cloud_ = false;
+  index_.reset();
+  normals_.reset();
+  have_indexing_ = false;
+  if (crop && compact_.empty()) {
+    compact_.reserve(whole_.size());
+    for (const Point& p : whole_) compact_.push_back(p.cast<float>());
+    whole_.clear();
+    whole_.shrink_to_fit();
+  }
+
+  PointList points;
+  cropped_ = false;
+  try {
+    if (!compact_.empty()) {
+      size_t inside = 0;
+      for (const Eigen::Vector3f& p : compact_) {
+        if (!crop || crop->contains(p.cast<double>())) ++inside;
+      }
+      if (crop && static_cast<double>(inside) <
+                      kWorthCroppingFraction * static_cast<double>(compact_.size())) {
+        cropped_ = true;
+        indexed_region_ = *crop;
+      }
+      points.reserve(cropped_ ? inside : compact_.size());
+      for (const Eigen::Vector3f& p : compact_) {
+        const Point q = p.cast<double>();
+        if (!cropped_ || crop->contains(q)) points.push_back(q);
+      }
+    } else if (indexing.voxel_size > 0.0) {
+      points = whole_;  // downsampled below; the full-resolution cloud stays for later changes
+    } else {
+      points = std::move(whole_);
+      whole_ = PointList();
+      index_owns_cloud_ = true;
+    }
+    if (indexing.voxel_size > 0.0 && std::isfinite(indexing.voxel_size)) {
+      points = voxelDownsample(points, indexing.voxel_size);
+      index_owns_cloud_ = false;
+    }
+    if (points.empty()) {
+      if (index_owns_cloud_) index_owns_cloud_ = false;
+      return false;
+    }
+    index_ = std::make_shared<const TargetIndex>(std::move(points));
+  } catch (const std::exception&) {
+    index_.reset();  // out of memory: align() reports "no target"
+    if (index_owns_cloud_) index_owns_cloud_ = false;
+    return false;
+  }
+  try {
+    normals_ = std::make_shared<const SurfaceNormalMap>(index_->points(),
+                                                        indexing.normal_voxel_size);
+  } catch (const std::exception&) {
+    normals_ = std::make_shared<const SurfaceNormalMap>();  // no normals: isotropic fallback
+  }
+  indexing_ = indexing;
+  have_indexing_ = true;
+  ++builds_;
+  last_build_ms_ =
+      std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+  return true;
+}
+
+}  // namespace pda_registration
