@@ -9,6 +9,7 @@
 
 #include "pda_registration/core/alignment_gate.hpp"
 #include "pda_registration/core/pose_covariance.hpp"
+#include "pda_registration/core/process_memory.hpp"
 #include "pda_registration/ros/point_cloud_conversion.hpp"
 
 namespace pda_registration {
@@ -20,6 +21,8 @@ bool shouldLog(const std::string& kind) {
   static std::mutex mutex;
   static std::map<std::string, ros::WallTime> last_logged;
   std::lock_guard<std::mutex> lock(mutex);
+  // Kinds carry frame names: a stream of ever-new frames must not grow this without bound.
+  if (last_logged.size() > 256) last_logged.clear();
   const ros::WallTime now = ros::WallTime::now();
   auto it = last_logged.find(kind);
   if (it != last_logged.end() && (now - it->second).toSec() < 5.0) return false;
@@ -45,11 +48,14 @@ void MapAlignmentNodelet::onInit() {
   ros::NodeHandle& node = getNodeHandle();
   ros::NodeHandle& private_node = getPrivateNodeHandle();
 
-  diagnostics_ = std::make_unique<diagnostic_updater::Updater>(node, private_node);
+  // Named after the nodelet, not the manager it shares: "<nodelet name>: alignment".
+  diagnostics_ = std::make_unique<diagnostic_updater::Updater>(node, private_node, getName());
   diagnostics_->setHardwareID(getName());
   diagnostics_->add("alignment", this, &MapAlignmentNodelet::diagnose);
-  diagnostics_timer_ = node.createTimer(ros::Duration(1.0),
-                                        [this](const ros::TimerEvent&) { diagnostics_->update(); });
+  // force_update on our own wall-clock timer: Updater::update() compares against ROS time and
+  // would fall silent for the length of a bag after a loop jumps simulated time back.
+  diagnostics_timer_ = node.createWallTimer(
+      ros::WallDuration(1.0), [this](const ros::WallTimerEvent&) { diagnostics_->force_update(); });
 
   settings_ok_ = readNodeSettings(private_node, &settings_, &settings_error_);
   if (!settings_ok_) {
@@ -152,6 +158,13 @@ bool MapAlignmentNodelet::checkFrame(const sensor_msgs::PointCloud2& cloud,
 
 void MapAlignmentNodelet::updateDenseCloud(const sensor_msgs::PointCloud2ConstPtr& cloud) {
   if (!checkFrame(*cloud, settings_.expected_dense_frame, "dense")) return;
+  const uint64_t fingerprint = cloudFingerprint(*cloud);
+  if (have_dense_ && fingerprint == dense_fingerprint_) {
+    std::lock_guard<std::mutex> lock(status_mutex_);
+    ++status_.dense_unchanged;
+    status_.dense_arrival = ros::WallTime::now();  // the map is alive, just not new
+    return;
+  }
   CloudConversion converted = fromPointCloud2(*cloud);
   if (!converted.ok()) {
     reportProblem("dense " + converted.error.substr(0, 12),
@@ -172,6 +185,13 @@ void MapAlignmentNodelet::updateDenseCloud(const sensor_msgs::PointCloud2ConstPt
   }
   dense_frame_ = cloud->header.frame_id;
   have_dense_ = true;
+  dense_fingerprint_ = fingerprint;
+  {
+    std::lock_guard<std::mutex> lock(status_mutex_);
+    status_.dense_points =
+        settings_.dense_is_target ? registration_.targetCloudSize() : dense_points_.size();
+    status_.dense_arrival = ros::WallTime::now();
+  }
   NODELET_INFO(
       "dense map from %s: %zu points (%zu non-finite dropped), ready in %.0f ms",
       dense_subscriber_.getTopic().c_str(),
@@ -252,6 +272,8 @@ void MapAlignmentNodelet::alignSparseCloud(const SparseJob& job) {
     status_.have_result = true;
     status_.last_result = result;
     status_.last_accepted = verdict.accepted;
+    status_.indexed_points = result.target_points_used;
+    status_.target_cropped = result.target_cropped;
     if (verdict.accepted)
       ++status_.accepted;
     else
@@ -290,7 +312,7 @@ void MapAlignmentNodelet::alignSparseCloud(const SparseJob& job) {
     estimate_dense_frame_ = dense_frame_;
     estimate_sparse_frame_ = sparse_frame;
   }
-  if (settings_.publish_tf) broadcastEstimate(output.T_dense_sparse, cloud.header.stamp);
+  if (settings_.publish_tf) broadcastEstimate(output.T_dense_sparse, cloud.header.stamp, false);
   const double latency_ms = (ros::WallTime::now() - job.received).toSec() * 1000.0;
   {
     std::lock_guard<std::mutex> lock(status_mutex_);
@@ -301,12 +323,24 @@ void MapAlignmentNodelet::alignSparseCloud(const SparseJob& job) {
 }
 
 void MapAlignmentNodelet::broadcastEstimate(const Eigen::Isometry3d& T_dense_sparse,
-                                            const ros::Time& stamp) {
+                                            const ros::Time& requested_stamp, bool periodic) {
   std::string dense, sparse;
+  ros::Time stamp = requested_stamp;
   {
     std::lock_guard<std::mutex> lock(estimate_mutex_);
     dense = estimate_dense_frame_;
     sparse = estimate_sparse_frame_;
+    // tf listeners drop data older than what they hold (TF_OLD_DATA) or at a stamp they already
+    // have (TF_REPEATED_DATA), each with a warning: stamps on our edge only move forward. A late
+    // cloud's estimate goes out stamped now; a re-broadcast while simulated time stands still
+    // is skipped; a clock that jumped back (a looping bag) starts the edge afresh.
+    const ros::Time now = ros::Time::now();
+    if (now + ros::Duration(1.0) < last_tf_stamp_) last_tf_stamp_ = ros::Time();
+    if (stamp <= last_tf_stamp_) {
+      if (periodic) return;
+      stamp = std::max(now, last_tf_stamp_ + ros::Duration(0, 1000));
+    }
+    last_tf_stamp_ = stamp;
   }
   const std::string parent = settings_.tf_parent_frame.empty() ? dense : settings_.tf_parent_frame;
   const std::string default_child = sparse + "_aligned";
@@ -344,7 +378,7 @@ void MapAlignmentNodelet::republishTf(const ros::TimerEvent&) {
     estimate = estimate_;
   }
   const ros::Time now = ros::Time::now();
-  if (!now.isZero()) broadcastEstimate(estimate, now);
+  if (!now.isZero()) broadcastEstimate(estimate, now, true);
 }
 
 void MapAlignmentNodelet::reportProblem(const std::string& kind, const std::string& problem,
@@ -366,7 +400,13 @@ void MapAlignmentNodelet::diagnose(diagnostic_updater::DiagnosticStatusWrapper& 
   }
   std::lock_guard<std::mutex> lock(status_mutex_);
   const Status& s = status_;
-  if (s.last_accepted) {
+  // A map whose publisher is gone still serves (a prior map need not be re-sent), but an
+  // operator should know it will not be updated.
+  const bool dense_gone = s.dense_points > 0 && dense_subscriber_.getNumPublishers() == 0;
+  if (s.last_accepted && dense_gone) {
+    status.summary(diagnostic_msgs::DiagnosticStatus::WARN,
+                   "aligned against the last dense map: its publisher is gone");
+  } else if (s.last_accepted) {
     status.summary(diagnostic_msgs::DiagnosticStatus::OK, "aligned");
   } else if (!s.last_problem.empty()) {
     status.summary(diagnostic_msgs::DiagnosticStatus::WARN, s.last_problem);
@@ -382,6 +422,14 @@ void MapAlignmentNodelet::diagnose(diagnostic_updater::DiagnosticStatusWrapper& 
   status.add("latency [ms]", s.last_latency_ms);
   status.add("seed source", toString(s.last_seed));
   status.add("dense clouds received", s.dense_received);
+  status.add("dense clouds unchanged (not re-indexed)", s.dense_unchanged);
+  status.add("dense map points", s.dense_points);
+  status.add("dense map age [s]",
+             s.dense_arrival.isZero() ? -1.0 : (ros::WallTime::now() - s.dense_arrival).toSec());
+  status.add("dense map publishers", dense_subscriber_.getNumPublishers());
+  status.add("indexed target points", s.indexed_points);
+  status.add("target cropped", s.target_cropped);
+  status.add("resident memory [MB]", processMemory().resident_mb);
   status.add("sparse clouds received", s.sparse_received);
   status.add("alignments", s.aligned);
   status.add("accepted", s.accepted);

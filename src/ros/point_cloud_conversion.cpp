@@ -100,6 +100,47 @@ CloudConversion fromPointCloud2(const sensor_msgs::PointCloud2& m) {
   return out;
 }
 
+namespace {
+// A multiply-xorshift mix per 8-byte word: a few milliseconds for a million points, and any
+// changed byte changes the result (this guards against re-indexing, not against an adversary).
+struct Fingerprint {
+  uint64_t state = 0x9E3779B97F4A7C15ull;
+  void add(uint64_t word) {
+    state ^= word + 0x9E3779B97F4A7C15ull + (state << 6) + (state >> 2);
+    state *= 0xBF58476D1CE4E5B9ull;
+    state ^= state >> 31;
+  }
+  void addBytes(const uint8_t* bytes, size_t size) {
+    size_t i = 0;
+    for (; i + 8 <= size; i += 8) {
+      uint64_t word;
+      std::memcpy(&word, bytes + i, 8);
+      add(word);
+    }
+    uint64_t tail = 0;
+    if (size > i) std::memcpy(&tail, bytes + i, size - i);
+    add(tail ^ (static_cast<uint64_t>(size) << 56));
+  }
+  void addText(const std::string& text) {
+    addBytes(reinterpret_cast<const uint8_t*>(text.data()), text.size());
+  }
+};
+}  // namespace
+
+uint64_t cloudFingerprint(const sensor_msgs::PointCloud2& m) {
+  Fingerprint f;
+  f.addText(m.header.frame_id);
+  f.add((static_cast<uint64_t>(m.width) << 32) | m.height);
+  f.add((static_cast<uint64_t>(m.point_step) << 32) | m.row_step);
+  f.add(m.is_bigendian);
+  for (const sensor_msgs::PointField& field : m.fields) {
+    f.addText(field.name);
+    f.add((static_cast<uint64_t>(field.offset) << 16) | (field.datatype << 8) | field.count);
+  }
+  f.addBytes(m.data.data(), m.data.size());
+  return f.state;
+}
+
 sensor_msgs::PointCloud2 toPointCloud2(const PointList& points, const std_msgs::Header& header) {
   sensor_msgs::PointCloud2 m;
   m.header = header;

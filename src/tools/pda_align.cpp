@@ -1,8 +1,6 @@
 // pda_align: align a source cloud to a target cloud with PDA (or PCL's ICP/GICP/NDT) and print
 // one JSON line. Exit codes: 0 converged, 1 ran but did not converge, 2 bad input or usage.
 
-#include <sys/resource.h>
-
 #include <algorithm>
 #include <iostream>
 #include <map>
@@ -11,6 +9,7 @@
 
 #include "pda_registration/core/error_metrics.hpp"
 #include "pda_registration/core/perturbation.hpp"
+#include "pda_registration/core/process_memory.hpp"
 #include "pda_registration/core/transform_io.hpp"
 #include "pda_registration/tools/cloud_io.hpp"
 #include "pda_registration/tools/command_line.hpp"
@@ -44,11 +43,6 @@ int usageError(const std::string& message) {
   return 2;
 }
 
-double peakRssMegabytes() {
-  rusage usage{};
-  getrusage(RUSAGE_SELF, &usage);
-  return static_cast<double>(usage.ru_maxrss) / 1024.0;
-}
 
 std::vector<std::string> splitList(const std::string& text) {
   std::vector<std::string> items;
@@ -174,7 +168,7 @@ int main(int argc, char** argv) {
     json.addRaw("compare", speed.str());
   }
   json.add("T", r.T_target_source);
-  json.add("peak_rss_mb", peakRssMegabytes());
+  json.add("peak_rss_mb", processMemory().peak_mb);
   std::cout << json.str() << std::endl;
 
   if (cl.has("output") && !writeTransformFile(cl.text("output"), r.T_target_source, &error)) {

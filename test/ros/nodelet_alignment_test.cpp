@@ -1,7 +1,6 @@
 // rostest: the nodelet on a real case of ../shared/data with a perturbed seed on tf. The published
 // transform, pose covariance, association markers and tf edge are checked against ground truth,
 // then a dynamic_reconfigure change of k must show in the next marker set.
-#include <dynamic_reconfigure/Reconfigure.h>
 #include <gtest/gtest.h>
 
 #include <Eigen/Cholesky>
@@ -17,23 +16,7 @@ namespace {
 using testing_support::groupAssociationLines;
 using testing_support::NodeletHarness;
 
-Eigen::Isometry3d toEigen(const geometry_msgs::Transform& t) {
-  Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
-  T.linear() = Eigen::Quaterniond(t.rotation.w, t.rotation.x, t.rotation.y, t.rotation.z)
-                   .normalized()
-                   .toRotationMatrix();
-  T.translation() = Eigen::Vector3d(t.translation.x, t.translation.y, t.translation.z);
-  return T;
-}
-
-bool setIntParameter(const std::string& nodelet, const std::string& name, int value) {
-  dynamic_reconfigure::Reconfigure request;
-  dynamic_reconfigure::IntParameter parameter;
-  parameter.name = name;
-  parameter.value = value;
-  request.request.config.ints.push_back(parameter);
-  return ros::service::call("/" + nodelet + "/set_parameters", request);
-}
+using testing_support::toEigen;
 
 class NodeletAlignment : public ::testing::Test {
  protected:
@@ -97,7 +80,7 @@ TEST_F(NodeletAlignment, ConvergesToGroundTruthAndPublishesEverything) {
   EXPECT_LT((on_tf.translation() - toEigen(transform.transform).translation()).norm(), 1e-4);
 
   // dynamic_reconfigure: k = 2 applies from the next alignment.
-  ASSERT_TRUE(setIntParameter(nodelet_, "k", 2));
+  ASSERT_TRUE(harness_->setParameter("k", 2));
   const size_t markers_before = harness_->markerCount();
   harness_->publishSparse(data_.source, "sparse_map");
   ASSERT_TRUE(harness_->waitForNextTransform(60.0));

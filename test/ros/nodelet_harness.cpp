@@ -1,5 +1,6 @@
 #include "nodelet_harness.hpp"
 
+#include <dynamic_reconfigure/Reconfigure.h>
 #include <tf2_eigen/tf2_eigen.h>
 
 #include <map>
@@ -11,12 +12,13 @@ namespace pda_registration {
 namespace testing_support {
 
 NodeletHarness::NodeletHarness(const std::string& nodelet_name)
-    : dense_(node_.advertise<sensor_msgs::PointCloud2>("dense_cloud", 1, true)),
+    : nodelet_name_(nodelet_name),
+      dense_(node_.advertise<sensor_msgs::PointCloud2>("dense_cloud", 1, true)),
       sparse_(node_.advertise<sensor_msgs::PointCloud2>("sparse_cloud", 5)),
       tf_listener_(tf_buffer_) {
   const std::string prefix = "/" + nodelet_name + "/";
   transform_ = node_.subscribe<geometry_msgs::TransformStamped>(
-      prefix + "transform", 10, [this](const geometry_msgs::TransformStamped::ConstPtr& m) {
+      prefix + "transform", 100, [this](const geometry_msgs::TransformStamped::ConstPtr& m) {
         std::lock_guard<std::mutex> lock(mutex_);
         transforms_.push_back(*m);
       });
@@ -38,6 +40,55 @@ NodeletHarness::NodeletHarness(const std::string& nodelet_name)
                                                     warnings_.push_back(m->msg);
                                                   }
                                                 });
+  // The updater names its status "<node name>: alignment".
+  diagnostics_ = node_.subscribe<diagnostic_msgs::DiagnosticArray>(
+      "/diagnostics", 20, [this](const diagnostic_msgs::DiagnosticArray::ConstPtr& m) {
+        std::lock_guard<std::mutex> lock(mutex_);
+        for (const diagnostic_msgs::DiagnosticStatus& status : m->status) {
+          if (status.name.find(nodelet_name_ + ": alignment") != std::string::npos) {
+            diagnostics_received_.push_back(status);
+          }
+        }
+      });
+}
+
+void NodeletHarness::closeDense() { dense_.shutdown(); }
+
+void NodeletHarness::reopenDense() {
+  dense_ = node_.advertise<sensor_msgs::PointCloud2>("dense_cloud", 1, true);
+}
+
+bool NodeletHarness::reconfigure(const dynamic_reconfigure::Config& config) {
+  dynamic_reconfigure::Reconfigure call;
+  call.request.config = config;
+  return ros::service::call("/" + nodelet_name_ + "/set_parameters", call);
+}
+
+bool NodeletHarness::setParameter(const std::string& name, int value) {
+  dynamic_reconfigure::Config config;
+  dynamic_reconfigure::IntParameter parameter;
+  parameter.name = name;
+  parameter.value = value;
+  config.ints.push_back(parameter);
+  return reconfigure(config);
+}
+
+bool NodeletHarness::setParameter(const std::string& name, double value) {
+  dynamic_reconfigure::Config config;
+  dynamic_reconfigure::DoubleParameter parameter;
+  parameter.name = name;
+  parameter.value = value;
+  config.doubles.push_back(parameter);
+  return reconfigure(config);
+}
+
+bool NodeletHarness::setParameter(const std::string& name, const std::string& value) {
+  dynamic_reconfigure::Config config;
+  dynamic_reconfigure::StrParameter parameter;
+  parameter.name = name;
+  parameter.value = value;
+  config.strs.push_back(parameter);
+  return reconfigure(config);
 }
 
 void NodeletHarness::publishDense(const PointList& points, const std::string& frame) {
@@ -141,6 +192,34 @@ geometry_msgs::TransformStamped NodeletHarness::lastTransform() {
   return transforms_.empty() ? geometry_msgs::TransformStamped() : transforms_.back();
 }
 
+std::vector<geometry_msgs::TransformStamped> NodeletHarness::transforms() {
+  std::lock_guard<std::mutex> lock(mutex_);
+  return transforms_;
+}
+
+size_t NodeletHarness::diagnosticsCount() {
+  std::lock_guard<std::mutex> lock(mutex_);
+  return diagnostics_received_.size();
+}
+
+diagnostic_msgs::DiagnosticStatus NodeletHarness::lastDiagnostics() {
+  std::lock_guard<std::mutex> lock(mutex_);
+  return diagnostics_received_.empty() ? diagnostic_msgs::DiagnosticStatus()
+                                       : diagnostics_received_.back();
+}
+
+std::string NodeletHarness::diagnosticValue(const std::string& key) {
+  for (const diagnostic_msgs::KeyValue& entry : lastDiagnostics().values) {
+    if (entry.key == key) return entry.value;
+  }
+  return "";
+}
+
+bool NodeletHarness::waitForFreshDiagnostics(double timeout_s) {
+  const size_t before = diagnosticsCount();
+  return waitFor([this, before] { return diagnostics_received_.size() > before; }, timeout_s);
+}
+
 geometry_msgs::PoseWithCovarianceStamped NodeletHarness::lastPose() {
   std::lock_guard<std::mutex> lock(mutex_);
   return poses_.empty() ? geometry_msgs::PoseWithCovarianceStamped() : poses_.back();
@@ -172,6 +251,15 @@ Eigen::Isometry3d NodeletHarness::lookup(const std::string& parent, const std::s
                                          double timeout_s) {
   return tf2::transformToEigen(
       tf_buffer_.lookupTransform(parent, child, ros::Time(0), ros::Duration(timeout_s)));
+}
+
+Eigen::Isometry3d toEigen(const geometry_msgs::Transform& t) {
+  Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
+  T.linear() = Eigen::Quaterniond(t.rotation.w, t.rotation.x, t.rotation.y, t.rotation.z)
+                   .normalized()
+                   .toRotationMatrix();
+  T.translation() = Eigen::Vector3d(t.translation.x, t.translation.y, t.translation.z);
+  return T;
 }
 
 MarkerGroups groupAssociationLines(const visualization_msgs::MarkerArray& markers) {

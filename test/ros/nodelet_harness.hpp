@@ -3,6 +3,8 @@
 // way a robot stack would, records everything the nodelet publishes (and its WARNs on /rosout),
 // and waits for it with timeouts.
 
+#include <diagnostic_msgs/DiagnosticArray.h>
+#include <dynamic_reconfigure/Config.h>
 #include <geometry_msgs/PoseWithCovarianceStamped.h>
 #include <geometry_msgs/TransformStamped.h>
 #include <ros/ros.h>
@@ -32,6 +34,14 @@ class NodeletHarness {
   void publishDense(const PointList& points, const std::string& frame);
   void publishSparse(const PointList& points, const std::string& frame);
   void publishRaw(const sensor_msgs::PointCloud2& cloud, bool dense);
+  /// Takes the dense map's publisher away (the nodelet then sees none) and brings a new one.
+  void closeDense();
+  void reopenDense();
+  /// Sets live parameters through dynamic_reconfigure's service; false when the call fails.
+  bool reconfigure(const dynamic_reconfigure::Config& config);
+  bool setParameter(const std::string& name, int value);
+  bool setParameter(const std::string& name, double value);
+  bool setParameter(const std::string& name, const std::string& value);
   /// Static tf dense_frame -> sparse_frame (the seed).
   void publishSeed(const Eigen::Isometry3d& T_dense_sparse, const std::string& dense_frame,
                    const std::string& sparse_frame);
@@ -52,10 +62,18 @@ class NodeletHarness {
 
   size_t transformCount();
   geometry_msgs::TransformStamped lastTransform();
+  std::vector<geometry_msgs::TransformStamped> transforms();
   geometry_msgs::PoseWithCovarianceStamped lastPose();
   size_t markerCount();
   visualization_msgs::MarkerArray lastMarkers();
   std::vector<std::string> warnings();
+  /// The nodelet's diagnostics: how many statuses arrived, the latest one, and one of its values
+  /// ("" when absent).
+  size_t diagnosticsCount();
+  diagnostic_msgs::DiagnosticStatus lastDiagnostics();
+  std::string diagnosticValue(const std::string& key);
+  /// Waits for a diagnostics status published after this call.
+  bool waitForFreshDiagnostics(double timeout_s);
   /// Everything logged on /rosout so far, one line per message (for failure messages).
   std::string logText();
   /// tf's transform between two frames right now (throws tf2::TransformException).
@@ -63,8 +81,9 @@ class NodeletHarness {
 
  private:
   ros::NodeHandle node_;
+  std::string nodelet_name_;
   ros::Publisher dense_, sparse_;
-  ros::Subscriber transform_, pose_, markers_, rosout_;
+  ros::Subscriber transform_, pose_, markers_, rosout_, diagnostics_;
   tf2_ros::StaticTransformBroadcaster static_broadcaster_;
   tf2_ros::Buffer tf_buffer_;
   tf2_ros::TransformListener tf_listener_;
@@ -73,7 +92,11 @@ class NodeletHarness {
   std::vector<geometry_msgs::PoseWithCovarianceStamped> poses_;
   std::vector<visualization_msgs::MarkerArray> markers_received_;
   std::vector<std::string> warnings_, logs_;
+  std::vector<diagnostic_msgs::DiagnosticStatus> diagnostics_received_;
 };
+
+/// geometry_msgs/Transform as an isometry.
+Eigen::Isometry3d toEigen(const geometry_msgs::Transform& transform);
 
 /// Lines per source point and the alpha sum of each point's lines, grouped by line start.
 struct MarkerGroups {

@@ -38,7 +38,7 @@ class MapAlignmentNodelet : public nodelet::Nodelet {
 
   // What the diagnostics report; guarded by status_mutex_.
   struct Status {
-    size_t sparse_received = 0, dense_received = 0;
+    size_t sparse_received = 0, dense_received = 0, dense_unchanged = 0;
     size_t dropped_stale = 0, dropped_throttled = 0;
     size_t input_errors = 0, missing_seed = 0;
     size_t aligned = 0, accepted = 0, rejected = 0;
@@ -48,6 +48,11 @@ class MapAlignmentNodelet : public nodelet::Nodelet {
     std::string last_problem;  // the latest rejection or input error, for the WARN status
     double last_latency_ms = 0.0;
     ros::Time last_problem_time;
+    // The dense map in use: its size, when it arrived (wall clock: sim time may jump back or
+    // stand still), and the size of the current (possibly cropped) index.
+    size_t dense_points = 0, indexed_points = 0;
+    bool target_cropped = false;
+    ros::WallTime dense_arrival;
   };
 
   void onInit() override;
@@ -58,7 +63,9 @@ class MapAlignmentNodelet : public nodelet::Nodelet {
   void updateDenseCloud(const sensor_msgs::PointCloud2ConstPtr& cloud);
   void alignSparseCloud(const SparseJob& job);
   void republishTf(const ros::TimerEvent& event);
-  void broadcastEstimate(const Eigen::Isometry3d& T_dense_sparse, const ros::Time& stamp);
+  /// Sends the estimate on tf; `periodic` for the timer's re-broadcast of an unchanged one.
+  void broadcastEstimate(const Eigen::Isometry3d& T_dense_sparse, const ros::Time& stamp,
+                         bool periodic);
   void diagnose(diagnostic_updater::DiagnosticStatusWrapper& status);
   /// Records a problem for diagnostics and logs a WARN, throttled per `kind`.
   void reportProblem(const std::string& kind, const std::string& problem, bool input_error);
@@ -80,7 +87,8 @@ class MapAlignmentNodelet : public nodelet::Nodelet {
   boost::recursive_mutex reconfigure_mutex_;  // dynamic_reconfigure requires boost's
   std::unique_ptr<diagnostic_updater::Updater> diagnostics_;
   ros::Subscriber dense_subscriber_, sparse_subscriber_;
-  ros::Timer tf_timer_, diagnostics_timer_;
+  ros::Timer tf_timer_;
+  ros::WallTimer diagnostics_timer_;  // wall clock: diagnostics flow while a bag pauses or loops
 
   // Worker-thread state (touched only by the worker after start).
   LatestInputQueue<sensor_msgs::PointCloud2ConstPtr, SparseJob> queue_;
@@ -89,12 +97,14 @@ class MapAlignmentNodelet : public nodelet::Nodelet {
   PointList dense_points_;  // kept when the dense cloud is the registration source
   std::string dense_frame_;
   bool have_dense_ = false;
+  uint64_t dense_fingerprint_ = 0;  // of the map in use: an unchanged re-publication is skipped
 
   // The last accepted estimate, re-broadcast on tf; guarded by estimate_mutex_.
   std::mutex estimate_mutex_;
   bool have_estimate_ = false;
   Eigen::Isometry3d estimate_ = Eigen::Isometry3d::Identity();
   std::string estimate_dense_frame_, estimate_sparse_frame_;
+  ros::Time last_tf_stamp_;  // newest stamp broadcast on our edge (tf drops older data loudly)
 
   std::mutex status_mutex_;
   Status status_;

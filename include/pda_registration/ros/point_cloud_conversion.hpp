@@ -5,6 +5,7 @@
 
 #include <sensor_msgs/PointCloud2.h>
 
+#include <cstdint>
 #include <string>
 
 #include "pda_registration/core/point_list.hpp"
@@ -21,6 +22,10 @@ struct CloudConversion {
 /// Reads x, y, z (FLOAT32 or FLOAT64) of every point. Fails (error set) on an empty cloud, a
 /// malformed layout, or a cloud without a single finite point.
 CloudConversion fromPointCloud2(const sensor_msgs::PointCloud2& message);
+
+/// A 64-bit fingerprint of the cloud's frame, layout and bytes (not its stamp): a map that is
+/// re-published unchanged (a latched or periodic map topic) is recognised and not re-indexed.
+uint64_t cloudFingerprint(const sensor_msgs::PointCloud2& message);
 
 /// A dense, unorganised FLOAT32 x/y/z cloud.
 sensor_msgs::PointCloud2 toPointCloud2(const PointList& points, const std_msgs::Header& header);

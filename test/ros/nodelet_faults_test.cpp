@@ -1,0 +1,287 @@
+// rostest: faults a running robot stack throws at the nodelet. tf gaps, extrapolation into the
+// future and the past, a wildly wrong seed; the dense map's publisher vanishing and a rebuilt
+// map arriving; a storm of live parameter changes while alignments run. After each, the nodelet
+// serves the next input, and nothing it published is off the ground truth: a rejected
+// alignment never reaches ~transform.
+#include <gtest/gtest.h>
+#include <tf2_eigen/tf2_eigen.h>
+#include <tf2_ros/transform_broadcaster.h>
+
+#include <atomic>
+#include <thread>
+
+#include "nodelet_harness.hpp"
+#include "pda_registration/core/error_metrics.hpp"
+#include "pda_registration/core/perturbation.hpp"
+#include "pda_registration/ros/point_cloud_conversion.hpp"
+#include "test_support/shared_data.hpp"
+
+namespace pda_registration {
+namespace {
+
+using testing_support::NodeletHarness;
+using testing_support::toEigen;
+
+// The seed dense_map -> sparse_map on tf at 20 Hz, stamped now, like a localisation node would
+// publish it; it can pause (a tf gap) and change.
+class SeedBroadcaster {
+ public:
+  explicit SeedBroadcaster(const Eigen::Isometry3d& seed) : seed_(seed) {
+    thread_ = std::thread([this] {
+      while (!stop_) {
+        if (running_) {
+          geometry_msgs::TransformStamped t;
+          {
+            std::lock_guard<std::mutex> lock(mutex_);
+            t = tf2::eigenToTransform(seed_);
+          }
+          t.header.stamp = ros::Time::now();
+          t.header.frame_id = "dense_map";
+          t.child_frame_id = "sparse_map";
+          broadcaster_.sendTransform(t);
+        }
+        ros::WallDuration(0.05).sleep();
+      }
+    });
+  }
+  ~SeedBroadcaster() {
+    stop_ = true;
+    thread_.join();
+  }
+  void pause() { running_ = false; }
+  void resume() { running_ = true; }
+  void set(const Eigen::Isometry3d& seed) {
+    std::lock_guard<std::mutex> lock(mutex_);
+    seed_ = seed;
+  }
+
+ private:
+  tf2_ros::TransformBroadcaster broadcaster_;
+  std::mutex mutex_;
+  Eigen::Isometry3d seed_;
+  std::atomic<bool> running_{true}, stop_{false};
+  std::thread thread_;
+};
+
+size_t countOf(const std::string& text, const std::string& what) {
+  size_t count = 0;
+  for (size_t at = text.find(what); at != std::string::npos; at = text.find(what, at + 1)) ++count;
+  return count;
+}
+
+class NodeletFaults : public ::testing::Test {
+ protected:
+  static void SetUpTestSuite() {
+    data_ = new testing_support::SharedCase;
+    std::string error;
+    ASSERT_TRUE(testing_support::loadSharedCase("room_scan", data_, &error)) << error;
+    harness_ = new NodeletHarness("pda_registration");
+    ASSERT_TRUE(harness_->waitForConnections(20.0));
+    seed_ = new SeedBroadcaster(data_->T_target_source * randomPerturbation(3.0, 0.15, 7));
+    harness_->publishDense(data_->target, "dense_map");
+    ros::WallDuration(1.5).sleep();  // the map is indexed and tf has history
+  }
+  static void TearDownTestSuite() {
+    delete seed_;
+    delete harness_;
+    delete data_;
+  }
+
+  void SetUp() override { first_transform_ = harness_->transformCount(); }
+
+  static void publishSparseStamped(const ros::Time& stamp) {
+    std_msgs::Header header;
+    header.frame_id = "sparse_map";
+    header.stamp = stamp;
+    harness_->publishRaw(toPointCloud2(data_->source, header), false);
+  }
+
+  // Publishes a sparse cloud and expects an estimate within the ground truth's tolerance.
+  static void expectAligned(const ros::Time& stamp, const Eigen::Isometry3d& truth,
+                            const std::string& what) {
+    publishSparseStamped(stamp);
+    ASSERT_TRUE(harness_->waitForNextTransform(30.0)) << what << ": no ~transform";
+    const PoseError e =
+        poseError(data_->source, toEigen(harness_->lastTransform().transform), truth);
+    EXPECT_LT(e.mean_distance, 0.03) << what;
+    EXPECT_LT(e.rotation_deg, 0.75) << what;
+  }
+
+  // Every ~transform of this test is near `truth` (eq. 22 below `tolerance`): a rejected
+  // result was never published.
+  void expectEveryPublishedNear(const Eigen::Isometry3d& truth, double tolerance = 0.03) {
+    const auto all = harness_->transforms();
+    for (size_t i = first_transform_; i < all.size(); ++i) {
+      const PoseError e = poseError(data_->source, toEigen(all[i].transform), truth);
+      EXPECT_LT(e.mean_distance, tolerance) << "published transform " << i << " is off";
+    }
+  }
+
+  size_t first_transform_ = 0;
+  static testing_support::SharedCase* data_;
+  static NodeletHarness* harness_;
+  static SeedBroadcaster* seed_;
+};
+
+testing_support::SharedCase* NodeletFaults::data_ = nullptr;
+NodeletHarness* NodeletFaults::harness_ = nullptr;
+SeedBroadcaster* NodeletFaults::seed_ = nullptr;
+
+// Runs first (gtest keeps declaration order).
+TEST_F(NodeletFaults, A_TfGapsExtrapolationAndAWrongSeed) {
+  const Eigen::Isometry3d truth = data_->T_target_source;
+  expectAligned(ros::Time::now(), truth, "tf flowing");
+  EXPECT_TRUE(harness_->waitForLogContaining("seeding from tf at the cloud's stamp", 5.0));
+
+  // A tf gap: the cloud is newer than any seed (extrapolation into the future) -> latest tf.
+  seed_->pause();
+  ros::WallDuration(1.0).sleep();
+  expectAligned(ros::Time::now(), truth, "in a tf gap");
+  EXPECT_TRUE(harness_->waitForLogContaining("seeding from latest tf", 5.0)) << harness_->logText();
+  // A cloud older than tf's whole history (extrapolation into the past) -> latest tf too.
+  expectAligned(ros::Time::now() - ros::Duration(3600.0), truth, "stamped an hour ago");
+
+  // tf comes back: seeds at the cloud's stamp again.
+  seed_->resume();
+  ros::WallDuration(0.5).sleep();
+  expectAligned(ros::Time::now(), truth, "tf back");
+  EXPECT_EQ(countOf(harness_->logText(), "seeding from tf at the cloud's stamp"), 2u)
+      << harness_->logText();
+
+  // A seed 50 m off (a localisation jump): nothing to align with -> rejected, not published,
+  // and tf keeps the last good estimate.
+  const Eigen::Isometry3d good = harness_->lookup("dense_map", "sparse_map_aligned", 5.0);
+  seed_->set(Eigen::Translation3d(0.0, 0.0, 50.0) * truth);
+  ros::WallDuration(0.3).sleep();
+  const size_t before = harness_->transformCount();
+  publishSparseStamped(ros::Time::now());
+  EXPECT_TRUE(harness_->waitForWarnContaining("alignment rejected", 15.0));
+  ros::WallDuration(1.0).sleep();
+  EXPECT_EQ(harness_->transformCount(), before) << "a rejected alignment was published";
+  const Eigen::Isometry3d still = harness_->lookup("dense_map", "sparse_map_aligned", 5.0);
+  EXPECT_LT((still.translation() - good.translation()).norm(), 1e-9);
+
+  seed_->set(truth * randomPerturbation(3.0, 0.15, 8));
+  ros::WallDuration(0.3).sleep();
+  expectAligned(ros::Time::now(), truth, "after the wrong seed");
+  expectEveryPublishedNear(truth);
+}
+
+TEST_F(NodeletFaults, B_DenseMapDisappearsAndARebuiltOneComesBack) {
+  const Eigen::Isometry3d truth = data_->T_target_source;
+  harness_->closeDense();
+  ros::WallDuration(1.0).sleep();
+  expectAligned(ros::Time::now(), truth, "dense publisher gone: the last map still serves");
+  ASSERT_TRUE(harness_->waitForFreshDiagnostics(5.0));
+  EXPECT_EQ(harness_->diagnosticValue("dense map publishers"), "0");
+  EXPECT_NE(harness_->lastDiagnostics().message.find("publisher is gone"), std::string::npos)
+      << harness_->lastDiagnostics().message;
+  EXPECT_EQ(harness_->lastDiagnostics().level, diagnostic_msgs::DiagnosticStatus::WARN);
+
+  // The map comes back rebuilt, 0.3 m further along x: the next estimate follows it.
+  harness_->reopenDense();
+  const Eigen::Isometry3d shift(Eigen::Translation3d(0.3, 0.0, 0.0));
+  PointList rebuilt = data_->target;
+  for (Point& p : rebuilt) p = shift * p;
+  ros::WallDuration(1.0).sleep();  // the new publisher connects
+  harness_->publishDense(rebuilt, "dense_map");
+  ros::WallDuration(1.5).sleep();
+  seed_->set(shift * truth * randomPerturbation(3.0, 0.15, 9));
+  ros::WallDuration(0.3).sleep();
+  expectAligned(ros::Time::now(), shift * truth, "rebuilt map");
+  ASSERT_TRUE(harness_->waitForFreshDiagnostics(5.0));
+  EXPECT_EQ(harness_->lastDiagnostics().level, diagnostic_msgs::DiagnosticStatus::OK)
+      << harness_->lastDiagnostics().message;
+
+  // The same map re-published (a periodic map topic) is recognised and not re-indexed.
+  const std::string unchanged_before =
+      harness_->diagnosticValue("dense clouds unchanged (not re-indexed)");
+  harness_->publishDense(rebuilt, "dense_map");
+  ros::WallDuration(1.0).sleep();
+  ASSERT_TRUE(harness_->waitForFreshDiagnostics(5.0));
+  EXPECT_EQ(std::stoi(harness_->diagnosticValue("dense clouds unchanged (not re-indexed)")),
+            std::stoi(unchanged_before) + 1);
+
+  // Back to the original map for the next test.
+  harness_->publishDense(data_->target, "dense_map");
+  seed_->set(truth * randomPerturbation(3.0, 0.15, 10));
+  ros::WallDuration(1.5).sleep();
+  expectAligned(ros::Time::now(), truth, "original map again");
+}
+
+TEST_F(NodeletFaults, C_ParameterStormWhileAligning) {
+  const Eigen::Isometry3d truth = data_->T_target_source;
+  // Sparse clouds at 10 Hz keep the worker busy, so most changes land mid-alignment.
+  std::atomic<bool> publishing{true};
+  std::thread publisher([&publishing] {
+    while (publishing) {
+      publishSparseStamped(ros::Time::now());
+      ros::WallDuration(0.1).sleep();
+    }
+  });
+  const size_t before = harness_->transformCount();
+  const std::vector<std::string> solvers = {"gauss_newton", "ceres"};
+  for (int i = 0; i < 30; ++i) {
+    dynamic_reconfigure::Config config;
+    const auto add_int = [&config](const std::string& name, int value) {
+      dynamic_reconfigure::IntParameter p;
+      p.name = name;
+      p.value = value;
+      config.ints.push_back(p);
+    };
+    const auto add_double = [&config](const std::string& name, double value) {
+      dynamic_reconfigure::DoubleParameter p;
+      p.name = name;
+      p.value = value;
+      config.doubles.push_back(p);
+    };
+    add_int("k", 1 + i % 8);
+    add_int("runs", 20 + i % 30);
+    add_int("threads", 1 + i % 2);
+    add_double("radius", 0.6 + 0.1 * (i % 6));
+    add_double("nu", i % 3 == 0 ? 3.0 : 8.0);
+    add_double("target_voxel_size", i % 4 == 0 ? 0.03 : 0.0);  // re-indexes the target
+    add_double("normal_voxel_size", i % 5 == 0 ? 0.2 : 0.15);
+    dynamic_reconfigure::StrParameter solver;
+    solver.name = "solver";
+    solver.value = solvers[i % 2];
+    config.strs.push_back(solver);
+    EXPECT_TRUE(harness_->reconfigure(config)) << "reconfigure call " << i;
+    ros::WallDuration(0.1).sleep();
+  }
+  // An impossible combination is refused and the previous parameters stay.
+  EXPECT_TRUE(harness_->setParameter("solver", std::string("closed_form")));
+  EXPECT_TRUE(harness_->waitForWarnContaining("reconfigure refused", 5.0));
+  publishing = false;
+  publisher.join();
+  const size_t during = harness_->transformCount() - before;
+  EXPECT_GE(during, 10u) << "the nodelet stopped serving during the changes";
+
+  // Settled parameters apply to the next alignment: k = 3 shows in the markers.
+  dynamic_reconfigure::Config settle;
+  dynamic_reconfigure::IntParameter k;
+  k.name = "k";
+  k.value = 3;
+  settle.ints.push_back(k);
+  dynamic_reconfigure::StrParameter solver;
+  solver.name = "solver";
+  solver.value = "gauss_newton";
+  settle.strs.push_back(solver);
+  ASSERT_TRUE(harness_->reconfigure(settle));
+  ros::WallDuration(1.0).sleep();  // the last storm alignment drains
+  const size_t markers_before = harness_->markerCount();
+  expectAligned(ros::Time::now(), truth, "after the storm");
+  ASSERT_TRUE(harness_->waitForMarkersBeyond(markers_before, 5.0));
+  size_t most_lines = 0;
+  for (size_t lines : testing_support::groupAssociationLines(harness_->lastMarkers()).lines_per_point)
+    most_lines = std::max(most_lines, lines);
+  EXPECT_EQ(most_lines, 3u);
+  // Some storm settings (k = 1, a 3 cm target voxel) are coarser: the success bound, 5 cm.
+  expectEveryPublishedNear(truth, 0.05);
+  // Published == accepted: diagnostics agree that nothing rejected went out.
+  ASSERT_TRUE(harness_->waitForFreshDiagnostics(5.0));
+  EXPECT_EQ(std::stoul(harness_->diagnosticValue("accepted")), harness_->transformCount());
+}
+
+}  // namespace
+}  // namespace pda_registration
