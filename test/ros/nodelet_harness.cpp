@@ -132,8 +132,11 @@ bool NodeletHarness::waitFor(const std::function<bool()>& condition, double time
 }
 
 bool NodeletHarness::waitForNextTransform(double timeout_s) {
-  const size_t before = transformCount();
-  return waitFor([this, before] { return transforms_.size() > before; }, timeout_s);
+  return waitForTransformsBeyond(transformCount(), timeout_s);
+}
+
+bool NodeletHarness::waitForTransformsBeyond(size_t count, double timeout_s) {
+  return waitFor([this, count] { return transforms_.size() > count; }, timeout_s);
 }
 
 bool NodeletHarness::waitForWarnContaining(const std::string& text, double timeout_s) {

@@ -46,10 +46,13 @@ class NodeletHarness {
   void publishSeed(const Eigen::Isometry3d& T_dense_sparse, const std::string& dense_frame,
                    const std::string& sparse_frame);
 
-  /// Waits until `condition` holds (checked under the harness lock) or the timeout passes.
+  /// Waits until `condition` holds (checked under the harness lock, so it must not call the
+  /// harness's own accessors) or the timeout passes.
   bool waitFor(const std::function<bool()>& condition, double timeout_s);
   /// Waits for the (n+1)-th ~transform, n = transforms already received.
   bool waitForNextTransform(double timeout_s);
+  /// Waits until more than `count` ~transforms have been received.
+  bool waitForTransformsBeyond(size_t count, double timeout_s);
   bool waitForWarnContaining(const std::string& text, double timeout_s);
   /// Any level (INFO and up) from the nodelet's log on /rosout.
   bool waitForLogContaining(const std::string& text, double timeout_s);
