@@ -1,0 +1,119 @@
+// rostest: the map-alignment nodelet shares a one-thread nodelet manager with a relay nodelet
+// (the rest of the robot's perception). While the nodelet is kept busy with ~1 s alignments on
+// the 453k-point factory map, the relay must deliver its 50 Hz stream without stalls: the
+// alignment runs on the nodelet's own worker thread, never in the manager's callback thread.
+#include <gtest/gtest.h>
+#include <std_msgs/Header.h>
+
+#include <algorithm>
+#include <atomic>
+#include <thread>
+
+#include "nodelet_harness.hpp"
+#include "pda_registration/core/error_metrics.hpp"
+#include "pda_registration/core/perturbation.hpp"
+#include "test_support/shared_data.hpp"
+
+namespace pda_registration {
+namespace {
+
+using testing_support::NodeletHarness;
+using testing_support::toEigen;
+
+TEST(NodeletSharedManager, OtherNodeletsKeepFlowingWhileAligning) {
+  testing_support::SharedCase data;
+  std::string error;
+  ASSERT_TRUE(testing_support::loadSharedCase("factory_p64", &data, &error)) << error;
+  NodeletHarness harness("pda_registration");
+  ASSERT_TRUE(harness.waitForConnections(20.0));
+
+  ros::NodeHandle node;
+  ros::Publisher heartbeat = node.advertise<std_msgs::Header>("/heartbeat_relay/input", 100);
+  std::mutex mutex;
+  std::vector<ros::WallTime> relayed;
+  ros::Subscriber relay = node.subscribe<std_msgs::Header>(
+      "/heartbeat_relay/output", 100, [&](const std_msgs::Header::ConstPtr&) {
+        std::lock_guard<std::mutex> lock(mutex);
+        relayed.push_back(ros::WallTime::now());
+      });
+  const ros::WallTime connect_deadline = ros::WallTime::now() + ros::WallDuration(20.0);
+  while ((heartbeat.getNumSubscribers() == 0 || relay.getNumPublishers() == 0) &&
+         ros::WallTime::now() < connect_deadline) {
+    ros::WallDuration(0.05).sleep();
+  }
+  ASSERT_GT(relay.getNumPublishers(), 0u) << "the relay nodelet did not come up";
+
+  // Slow, exhaustive alignments (every point in every run, 10 candidates, 10 EM iterations).
+  dynamic_reconfigure::Config slow;
+  for (const auto& entry : std::vector<std::pair<std::string, int>>{
+           {"coarse_stride", 1}, {"k", 10}, {"em_iterations", 10}}) {
+    dynamic_reconfigure::IntParameter p;
+    p.name = entry.first;
+    p.value = entry.second;
+    slow.ints.push_back(p);
+  }
+  ASSERT_TRUE(harness.reconfigure(slow));
+  harness.publishSeed(data.T_target_source * randomPerturbation(3.0, 0.15, 2), "dense_map",
+                      "sparse_map");
+  harness.publishDense(data.target, "dense_map");
+  ros::WallDuration(2.0).sleep();
+
+  // 10 s: the relay's stream at 50 Hz, and a sparse cloud every 0.3 s so the worker never idles.
+  std::atomic<bool> running{true};
+  std::thread sparse_feed([&] {
+    while (running) {
+      harness.publishSparse(data.source, "sparse_map");
+      ros::WallDuration(0.3).sleep();
+    }
+  });
+  const size_t transforms_before = harness.transformCount();
+  {
+    std::lock_guard<std::mutex> lock(mutex);
+    relayed.clear();
+  }
+  int sent = 0;
+  const ros::WallTime end = ros::WallTime::now() + ros::WallDuration(10.0);
+  while (ros::WallTime::now() < end) {
+    std_msgs::Header beat;
+    beat.seq = static_cast<uint32_t>(sent++);
+    heartbeat.publish(beat);
+    ros::WallDuration(0.02).sleep();
+  }
+  running = false;
+  sparse_feed.join();
+  ros::WallDuration(0.5).sleep();  // the last beats arrive
+
+  // The nodelet was busy the whole time with alignments of about a second ...
+  const size_t alignments = harness.transformCount() - transforms_before;
+  EXPECT_GE(alignments, 3u);
+  ASSERT_TRUE(harness.waitForFreshDiagnostics(5.0));
+  const double alignment_ms = std::stod(harness.diagnosticValue("alignment time [ms]"));
+  ASSERT_GT(alignment_ms, 400.0) << "alignments too short for this test to mean anything";
+
+  // ... and the relay never stalled for anywhere near one alignment.
+  std::vector<ros::WallTime> times;
+  {
+    std::lock_guard<std::mutex> lock(mutex);
+    times = relayed;
+  }
+  EXPECT_GE(times.size(), static_cast<size_t>(0.95 * sent)) << "relayed " << times.size() << " of "
+                                                           << sent;
+  double longest_gap_ms = 0.0;
+  for (size_t i = 1; i < times.size(); ++i) {
+    longest_gap_ms = std::max(longest_gap_ms, (times[i] - times[i - 1]).toSec() * 1000.0);
+  }
+  EXPECT_LT(longest_gap_ms, 0.5 * alignment_ms)
+      << "the relay stalled for " << longest_gap_ms << " ms during " << alignment_ms
+      << " ms alignments";
+  std::cout << "relay: " << times.size() << "/" << sent << " delivered, longest gap "
+            << longest_gap_ms << " ms; " << alignments << " alignments of ~" << alignment_ms
+            << " ms" << std::endl;
+
+  for (const geometry_msgs::TransformStamped& t : harness.transforms()) {
+    EXPECT_LT(poseError(data.source, toEigen(t.transform), data.T_target_source).mean_distance,
+              0.01);
+  }
+}
+
+}  // namespace
+}  // namespace pda_registration
