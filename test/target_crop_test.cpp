@@ -7,15 +7,14 @@
 #include "pda_registration/core/pda_registration.hpp"
 #include "pda_registration/core/perturbation.hpp"
 #include "pda_registration/core/target_map.hpp"
+#include "pda_registration/tools/tiled_map.hpp"
 #include "test_support/shared_data.hpp"
-#include "test_support/tiled_map.hpp"
 
 namespace pda_registration {
 namespace {
 
 using testing_support::loadSharedCase;
 using testing_support::SharedCase;
-using testing_support::TiledMap;
 
 TEST(ReachableRegion, CoversTranslationRotationAndRadius) {
   // Two points 2 m apart: centroid in the middle, farthest point 1 m from it.
@@ -46,13 +45,7 @@ class TargetCrop : public ::testing::Test {
     ASSERT_TRUE(loadSharedCase("room_scan", room_, &error)) << error;
     // 5 x 5 copies of the room, three room widths apart: the source's reach around one copy
     // (its bounds + 1 m + a 20 degree sweep + 1 m radius, + 25 % slack) holds no other copy.
-    AlignedBox bounds;
-    for (const Point& p : room_->target) {
-      bounds.min = bounds.min.cwiseMin(p);
-      bounds.max = bounds.max.cwiseMax(p);
-    }
-    const double spacing = 3.0 * (bounds.max - bounds.min).head<2>().maxCoeff();
-    tiles_ = new TiledMap(testing_support::tileCloud(room_->target, 5, 5, spacing));
+    tiles_ = new TiledMap(tileCloud(room_->target, 5, 5, separatedTileSpacing(room_->target)));
   }
   static void TearDownTestSuite() {
     delete tiles_;

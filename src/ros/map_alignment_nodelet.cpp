@@ -2,6 +2,8 @@
 
 #include <tf2_eigen/tf2_eigen.h>
 
+#include <malloc.h>
+
 #include <chrono>
 #include <map>
 #include <pluginlib/class_list_macros.hpp>
@@ -137,6 +139,13 @@ void MapAlignmentNodelet::workerLoop() {
     } catch (const std::exception& error) {
       reportProblem("internal", std::string("internal error: ") + error.what(), false);
     }
+    // Let go of the messages now rather than when the next ones arrive, and hand the freed
+    // megabytes back to the system: glibc otherwise keeps them in its per-thread arenas, and a
+    // stream of large maps (freed by one thread, allocated by another) ratchets the manager's
+    // RSS up by tens of MB a minute (measured by the stress rostest; flat with the trim).
+    dense.reset();
+    sparse = SparseJob();
+    malloc_trim(0);
   }
 }
 

@@ -2,9 +2,12 @@
 // ~transform received, on a case folder (target.pcd, source.pcd, T_target_source.txt). Publishes
 // the dense map (latched) and a perturbed seed on tf once, then the sparse cloud --count times,
 // each after the previous result, and prints one JSON line with the median / p95 / max latency
-// and the error of the last estimate. Needs a running roscore and the nodelet
-// (scripts/measure_latency starts both).
+// and the error of the last estimate. With --tile N the dense map is N x N copies of the case's
+// target (the middle one in place; e.g. --tile 7 on room_scan: 5.5M points), and the JSON adds
+// what the nodelet's diagnostics say of it: points indexed, cropping, resident memory. Needs a
+// running roscore and the nodelet (scripts/measure_latency and scripts/measure_scale start both).
 
+#include <diagnostic_msgs/DiagnosticArray.h>
 #include <geometry_msgs/TransformStamped.h>
 #include <ros/ros.h>
 #include <sensor_msgs/PointCloud2.h>
@@ -12,6 +15,8 @@
 #include <tf2_ros/static_transform_broadcaster.h>
 
 #include <algorithm>
+#include <map>
+#include <mutex>
 #include <atomic>
 #include <iostream>
 #include <vector>
@@ -23,6 +28,7 @@
 #include "pda_registration/tools/command_line.hpp"
 #include "pda_registration/tools/json_line.hpp"
 #include "pda_registration/tools/statistics.hpp"
+#include "pda_registration/tools/tiled_map.hpp"
 
 using namespace pda_registration;
 
@@ -37,25 +43,30 @@ int fail(const std::string& message) {
 
 int main(int argc, char** argv) {
   ros::init(argc, argv, "pda_latency_probe", ros::init_options::AnonymousName);
-  CommandLine cl({"case", "count", "nodelet", "timeout"}, {"help"});
+  CommandLine cl({"case", "count", "nodelet", "timeout", "tile"}, {"help"});
   if (!cl.parse(argc, argv)) return fail(cl.error());
   if (cl.has("help") || !cl.has("case")) {
     std::cout << "usage: pda_latency_probe --case DIR [--count 20] [--nodelet pda_registration]"
-                 " [--timeout 60]\n";
+                 " [--timeout 60] [--tile N]\n";
     return cl.has("help") ? 0 : 2;
   }
-  int count = 20;
+  int count = 20, tile = 1;
   double timeout = 60.0;
-  if (!cl.integer("count", &count, 1, 100000) || !cl.number("timeout", &timeout, 0.1, 3600)) {
+  if (!cl.integer("count", &count, 1, 100000) || !cl.number("timeout", &timeout, 0.1, 3600) ||
+      !cl.integer("tile", &tile, 1, 101)) {
     return fail(cl.error());
   }
+  if (tile % 2 == 0) return fail("--tile must be odd (the middle copy holds the ground truth)");
   CaseFolder loaded;
   std::string error;
   if (!loadCaseFolder(cl.text("case"), &loaded, &error)) return fail(error);
-  const PointList& target = loaded.target;
+  const PointList target =
+      tile == 1 ? loaded.target
+                : tileCloud(loaded.target, tile, tile, separatedTileSpacing(loaded.target)).points;
   const PointList& source = loaded.source;
   const Eigen::Isometry3d truth = loaded.T_target_source;
 
+  const std::string nodelet = cl.text("nodelet", "pda_registration");
   ros::NodeHandle node;
   ros::Publisher dense = node.advertise<sensor_msgs::PointCloud2>("dense_cloud", 1, true);
   ros::Publisher sparse = node.advertise<sensor_msgs::PointCloud2>("sparse_cloud", 1);
@@ -65,13 +76,30 @@ int main(int argc, char** argv) {
   geometry_msgs::TransformStamped last;
   std::mutex mutex;
   ros::Subscriber results = node.subscribe<geometry_msgs::TransformStamped>(
-      "/" + cl.text("nodelet", "pda_registration") + "/transform", 10,
+      "/" + nodelet + "/transform", 10,
       [&](const geometry_msgs::TransformStamped::ConstPtr& m) {
         std::lock_guard<std::mutex> lock(mutex);
         latencies.push_back((ros::WallTime::now() - published).toSec() * 1000.0);
         last = *m;
         ++received;
       });
+  // The nodelet's own view (diagnostics, 1 Hz): map size, index size, cropping, memory.
+  std::map<std::string, std::string> diagnostics;
+  size_t diagnostics_received = 0;
+  ros::Subscriber diagnostics_subscriber = node.subscribe<diagnostic_msgs::DiagnosticArray>(
+      "/diagnostics", 10, [&](const diagnostic_msgs::DiagnosticArray::ConstPtr& m) {
+        for (const auto& status : m->status) {
+          if (status.name.find(nodelet + ": alignment") == std::string::npos) continue;
+          std::lock_guard<std::mutex> lock(mutex);
+          for (const auto& entry : status.values) diagnostics[entry.key] = entry.value;
+          ++diagnostics_received;
+        }
+      });
+  const auto diagnostic = [&](const std::string& key) {
+    std::lock_guard<std::mutex> lock(mutex);
+    const auto it = diagnostics.find(key);
+    return it == diagnostics.end() ? std::string() : it->second;
+  };
   ros::AsyncSpinner spinner(1);
   spinner.start();
 
@@ -90,8 +118,15 @@ int main(int argc, char** argv) {
   std_msgs::Header header;
   header.frame_id = "dense_map";
   header.stamp = ros::Time::now();
+  const ros::WallTime dense_published = ros::WallTime::now();
   dense.publish(toPointCloud2(target, header));
-  ros::WallDuration(2.0).sleep();  // the map is indexed before the first sparse cloud
+  // The map is in place (and, unless it is large enough to crop, indexed) before the first
+  // sparse cloud: wait until the diagnostics report it.
+  while (diagnostic("dense map points") != std::to_string(target.size())) {
+    if (ros::WallTime::now() > deadline || !ros::ok()) return fail("the dense map never arrived");
+    ros::WallDuration(0.05).sleep();
+  }
+  const double dense_ready_ms = (ros::WallTime::now() - dense_published).toSec() * 1000.0;
 
   header.frame_id = "sparse_map";
   const sensor_msgs::PointCloud2 cloud = toPointCloud2(source, header);
@@ -109,12 +144,34 @@ int main(int argc, char** argv) {
       ros::WallDuration(0.001).sleep();
     }
   }
+  // Diagnostics published after the last alignment.
+  size_t seen;
+  {
+    std::lock_guard<std::mutex> lock(mutex);
+    seen = diagnostics_received;
+  }
+  while (ros::ok() && ros::WallTime::now() < deadline) {
+    {
+      std::lock_guard<std::mutex> lock(mutex);
+      if (diagnostics_received > seen) break;
+    }
+    ros::WallDuration(0.05).sleep();
+  }
+  const std::string indexed = diagnostic("indexed target points");
+  const std::string cropped = diagnostic("target cropped");
+  const std::string resident = diagnostic("resident memory [MB]");
+  const std::string alignment_ms = diagnostic("alignment time [ms]");
   std::lock_guard<std::mutex> lock(mutex);
   const PoseError e = poseError(source, tf2::transformToEigen(last), truth);
   JsonLine json;
   json.add("case", cl.text("case")).add("count", static_cast<int>(latencies.size()));
   json.add("median_ms", percentile(latencies, 0.5)).add("p95_ms", percentile(latencies, 0.95));
-  json.add("max_ms", percentile(latencies, 1.0));
+  json.add("max_ms", percentile(latencies, 1.0)).add("first_ms", latencies.front());
+  json.add("dense_points", target.size()).add("dense_ready_ms", dense_ready_ms);
+  json.addRaw("indexed_points", indexed.empty() ? "null" : indexed);
+  json.add("target_cropped", cropped == "True" || cropped == "true");
+  json.addRaw("last_alignment_ms", alignment_ms.empty() ? "null" : alignment_ms);
+  json.addRaw("nodelet_rss_mb", resident.empty() ? "null" : resident);
   json.add("mean_distance", e.mean_distance).add("rot_err_deg", e.rotation_deg);
   json.add("trans_err_m", e.translation);
   std::cout << json.str() << std::endl;

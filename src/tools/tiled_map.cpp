@@ -1,7 +1,9 @@
-#include "test_support/tiled_map.hpp"
+#include "pda_registration/tools/tiled_map.hpp"
+
+#include <algorithm>
+#include <limits>
 
 namespace pda_registration {
-namespace testing_support {
 
 TiledMap tileCloud(const PointList& tile, int nx, int ny, double spacing) {
   TiledMap map;
@@ -16,5 +18,15 @@ TiledMap tileCloud(const PointList& tile, int nx, int ny, double spacing) {
   return map;
 }
 
-}  // namespace testing_support
+double separatedTileSpacing(const PointList& tile) {
+  Eigen::Vector2d low = Eigen::Vector2d::Constant(std::numeric_limits<double>::infinity());
+  Eigen::Vector2d high = -low;
+  for (const Point& p : tile) {
+    if (!p.allFinite()) continue;
+    low = low.cwiseMin(p.head<2>());
+    high = high.cwiseMax(p.head<2>());
+  }
+  return tile.empty() ? 1.0 : 3.0 * std::max((high - low).maxCoeff(), 1e-3);
+}
+
 }  // namespace pda_registration

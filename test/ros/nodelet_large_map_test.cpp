@@ -1,0 +1,60 @@
+// rostest: a 5.5M-point dense map (7 x 7 copies of room_scan's 113k-point target). The nodelet
+// indexes only the region each sparse map can reach: its diagnostics report a cropped index of a
+// few percent of the map, the estimate lands on the ground truth, and a sparse map placed on
+// another copy is served by a re-crop there.
+#include <gtest/gtest.h>
+
+#include "nodelet_harness.hpp"
+#include "pda_registration/core/error_metrics.hpp"
+#include "pda_registration/core/perturbation.hpp"
+#include "pda_registration/tools/tiled_map.hpp"
+#include "test_support/shared_data.hpp"
+
+namespace pda_registration {
+namespace {
+
+using testing_support::NodeletHarness;
+using testing_support::toEigen;
+
+TEST(NodeletLargeMap, IndexesOnlyTheSparseMapsReach) {
+  testing_support::SharedCase room;
+  std::string error;
+  ASSERT_TRUE(testing_support::loadSharedCase("room_scan", &room, &error)) << error;
+  const TiledMap map = tileCloud(room.target, 7, 7, separatedTileSpacing(room.target));
+  ASSERT_GT(map.points.size(), 5000000u);
+  NodeletHarness harness("pda_registration");
+  ASSERT_TRUE(harness.waitForConnections(20.0));
+  harness.publishDense(map.points, "dense_map");
+  ASSERT_TRUE(harness.waitForLogContaining("dense map from", 60.0))
+      << "the 5.5M-point map never arrived";
+
+  // On the middle copy, then on the copy two steps east: each is a separate crop.
+  const std::vector<Eigen::Isometry3d> places = {
+      room.T_target_source,
+      Eigen::Translation3d(2.0 * map.spacing, 0.0, 0.0) * room.T_target_source};
+  for (size_t i = 0; i < places.size(); ++i) {
+    harness.publishSeed(places[i] * randomPerturbation(3.0, 0.15, 11 + i), "dense_map",
+                        "sparse_map");
+    ros::WallDuration(0.5).sleep();
+    harness.publishSparse(room.source, "sparse_map");
+    ASSERT_TRUE(harness.waitForNextTransform(60.0)) << "place " << i;
+    const PoseError e =
+        poseError(room.source, toEigen(harness.lastTransform().transform), places[i]);
+    EXPECT_LT(e.mean_distance, 0.03) << "place " << i;
+    EXPECT_LT(e.rotation_deg, 0.75) << "place " << i;
+
+    ASSERT_TRUE(harness.waitForFreshDiagnostics(5.0));
+    EXPECT_EQ(harness.diagnosticValue("target cropped"), "True");
+    EXPECT_EQ(std::stoul(harness.diagnosticValue("dense map points")), map.points.size());
+    const double indexed = std::stod(harness.diagnosticValue("indexed target points"));
+    EXPECT_LT(indexed, 0.05 * static_cast<double>(map.points.size())) << "place " << i;
+    EXPECT_GT(indexed, 0.5 * static_cast<double>(room.target.size())) << "place " << i;
+    std::cout << "large map, place " << i << ": indexed " << indexed << " of "
+              << map.points.size() << " points; alignment "
+              << harness.diagnosticValue("alignment time [ms]") << " ms; resident "
+              << harness.diagnosticValue("resident memory [MB]") << " MB" << std::endl;
+  }
+}
+
+}  // namespace
+}  // namespace pda_registration
