@@ -16,6 +16,7 @@
 
 #include <algorithm>
 #include <map>
+#include <sstream>
 #include <mutex>
 #include <atomic>
 #include <iostream>
@@ -167,6 +168,9 @@ int main(int argc, char** argv) {
   json.add("case", cl.text("case")).add("count", static_cast<int>(latencies.size()));
   json.add("median_ms", percentile(latencies, 0.5)).add("p95_ms", percentile(latencies, 0.95));
   json.add("max_ms", percentile(latencies, 1.0)).add("first_ms", latencies.front());
+  std::ostringstream each;
+  for (size_t i = 0; i < latencies.size(); ++i) each << (i ? "," : "[") << latencies[i];
+  json.addRaw("latencies_ms", each.str() + "]");
   json.add("dense_points", target.size()).add("dense_ready_ms", dense_ready_ms);
   json.addRaw("indexed_points", indexed.empty() ? "null" : indexed);
   json.add("target_cropped", cropped == "True" || cropped == "true");
