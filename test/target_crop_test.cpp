@@ -29,9 +29,9 @@ TEST(ReachableRegion, CoversTranslationRotationAndRadius) {
   EXPECT_NEAR(reach.max.y(), 1.75, 1e-12);
   // Every rotation of the source by up to 60 degrees about its centroid stays inside.
   for (double angle = -M_PI / 3.0; angle <= M_PI / 3.0; angle += 0.1) {
-    const Eigen::Isometry3d turned =
-        Eigen::Translation3d(10.0, 0.0, 0.0) * Eigen::AngleAxisd(angle, Eigen::Vector3d::UnitZ()) *
-        Eigen::Translation3d(-10.0, 0.0, 0.0) * T;
+    const Eigen::Isometry3d turned = Eigen::Translation3d(10.0, 0.0, 0.0) *
+                                     Eigen::AngleAxisd(angle, Eigen::Vector3d::UnitZ()) *
+                                     Eigen::Translation3d(-10.0, 0.0, 0.0) * T;
     for (const Point& p : source) EXPECT_TRUE(reach.contains(Point(turned * p)));
   }
   EXPECT_TRUE(reachableRegion(PointList(), T, 1.0, 0.1, 1.0).empty());
@@ -100,14 +100,16 @@ TEST_F(TargetCrop, ReindexesOnlyWhenTheReachLeavesTheIndexedRegion) {
   EXPECT_EQ(large.targetIndexBuilds(), 1u);
 
   // The next scan from nearly the same place: same index.
-  const RegistrationResult again = large.align(room_->source, truth * randomPerturbation(2.0, 0.1, 2));
+  const RegistrationResult again =
+      large.align(room_->source, truth * randomPerturbation(2.0, 0.1, 2));
   EXPECT_TRUE(again.converged) << again.reason;
   EXPECT_EQ(again.target_index_ms, 0.0);
   EXPECT_EQ(large.targetIndexBuilds(), 1u);
 
   // The same room one copy further east: re-cropped there, and still right.
   const Eigen::Isometry3d east = Eigen::Translation3d(tiles_->spacing, 0.0, 0.0) * truth;
-  const RegistrationResult moved = large.align(room_->source, east * randomPerturbation(2.0, 0.1, 3));
+  const RegistrationResult moved =
+      large.align(room_->source, east * randomPerturbation(2.0, 0.1, 3));
   ASSERT_TRUE(moved.converged) << moved.reason;
   EXPECT_EQ(large.targetIndexBuilds(), 2u);
   EXPECT_LT(poseError(room_->source, moved.T_target_source, east).mean_distance, 0.03);

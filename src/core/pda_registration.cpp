@@ -277,8 +277,9 @@ RegistrationResult PdaRegistration::alignUnchecked(const PointList& source_input
   }
   const size_t builds_before = target_map_.builds();
   if (!target_map_.prepare(how, reach)) {
-    result.reason = "no overlap: the target has no point within reach of the source (bounds "
-                    "plus crop_max_translation, crop_max_rotation_deg and radius)";
+    result.reason =
+        "no overlap: the target has no point within reach of the source (bounds "
+        "plus crop_max_translation, crop_max_rotation_deg and radius)";
     return result;
   }
   if (target_map_.builds() != builds_before) result.target_index_ms = target_map_.lastBuildMs();

@@ -141,8 +141,8 @@ bool TargetMap::build(const TargetIndexing& indexing, const AlignedBox* crop) {
     return false;
   }
   try {
-    normals_ = std::make_shared<const SurfaceNormalMap>(index_->points(),
-                                                        indexing.normal_voxel_size);
+    normals_ =
+        std::make_shared<const SurfaceNormalMap>(index_->points(), indexing.normal_voxel_size);
   } catch (const std::exception&) {
     normals_ = std::make_shared<const SurfaceNormalMap>();  // no normals: isotropic fallback
   }

@@ -1,8 +1,7 @@
 #include "pda_registration/ros/map_alignment_nodelet.hpp"
 
-#include <tf2_eigen/tf2_eigen.h>
-
 #include <malloc.h>
+#include <tf2_eigen/tf2_eigen.h>
 
 #include <chrono>
 #include <map>

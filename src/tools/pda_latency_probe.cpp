@@ -15,11 +15,11 @@
 #include <tf2_ros/static_transform_broadcaster.h>
 
 #include <algorithm>
-#include <map>
-#include <sstream>
-#include <mutex>
 #include <atomic>
 #include <iostream>
+#include <map>
+#include <mutex>
+#include <sstream>
 #include <vector>
 
 #include "pda_registration/core/error_metrics.hpp"
@@ -77,8 +77,7 @@ int main(int argc, char** argv) {
   geometry_msgs::TransformStamped last;
   std::mutex mutex;
   ros::Subscriber results = node.subscribe<geometry_msgs::TransformStamped>(
-      "/" + nodelet + "/transform", 10,
-      [&](const geometry_msgs::TransformStamped::ConstPtr& m) {
+      "/" + nodelet + "/transform", 10, [&](const geometry_msgs::TransformStamped::ConstPtr& m) {
         std::lock_guard<std::mutex> lock(mutex);
         latencies.push_back((ros::WallTime::now() - published).toSec() * 1000.0);
         last = *m;

@@ -80,7 +80,7 @@ TEST_F(NodeletAlignment, ConvergesToGroundTruthAndPublishesEverything) {
   EXPECT_LT((on_tf.translation() - toEigen(transform.transform).translation()).norm(), 1e-4);
 
   // dynamic_reconfigure: k = 2 applies from the next alignment.
-  ASSERT_TRUE(harness_->setParameter("k", 2));
+  ASSERT_TRUE(harness_->reconfigure(testing_support::ParameterChange().set("k", 2)));
   const size_t markers_before = harness_->markerCount();
   harness_->publishSparse(data_.source, "sparse_map");
   ASSERT_TRUE(harness_->waitForNextTransform(60.0));

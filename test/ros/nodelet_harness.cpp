@@ -11,6 +11,31 @@
 namespace pda_registration {
 namespace testing_support {
 
+namespace {
+template <class Parameter, class Value>
+void addParameter(std::vector<Parameter>* list, const std::string& name, const Value& value) {
+  Parameter parameter;
+  parameter.name = name;
+  parameter.value = value;
+  list->push_back(parameter);
+}
+}  // namespace
+
+ParameterChange& ParameterChange::set(const std::string& name, int value) {
+  addParameter(&config_.ints, name, value);
+  return *this;
+}
+
+ParameterChange& ParameterChange::set(const std::string& name, double value) {
+  addParameter(&config_.doubles, name, value);
+  return *this;
+}
+
+ParameterChange& ParameterChange::set(const std::string& name, const std::string& value) {
+  addParameter(&config_.strs, name, value);
+  return *this;
+}
+
 NodeletHarness::NodeletHarness(const std::string& nodelet_name)
     : nodelet_name_(nodelet_name),
       dense_(node_.advertise<sensor_msgs::PointCloud2>("dense_cloud", 1, true)),
@@ -58,37 +83,10 @@ void NodeletHarness::reopenDense() {
   dense_ = node_.advertise<sensor_msgs::PointCloud2>("dense_cloud", 1, true);
 }
 
-bool NodeletHarness::reconfigure(const dynamic_reconfigure::Config& config) {
+bool NodeletHarness::reconfigure(const ParameterChange& change) {
   dynamic_reconfigure::Reconfigure call;
-  call.request.config = config;
+  call.request.config = change.config();
   return ros::service::call("/" + nodelet_name_ + "/set_parameters", call);
-}
-
-bool NodeletHarness::setParameter(const std::string& name, int value) {
-  dynamic_reconfigure::Config config;
-  dynamic_reconfigure::IntParameter parameter;
-  parameter.name = name;
-  parameter.value = value;
-  config.ints.push_back(parameter);
-  return reconfigure(config);
-}
-
-bool NodeletHarness::setParameter(const std::string& name, double value) {
-  dynamic_reconfigure::Config config;
-  dynamic_reconfigure::DoubleParameter parameter;
-  parameter.name = name;
-  parameter.value = value;
-  config.doubles.push_back(parameter);
-  return reconfigure(config);
-}
-
-bool NodeletHarness::setParameter(const std::string& name, const std::string& value) {
-  dynamic_reconfigure::Config config;
-  dynamic_reconfigure::StrParameter parameter;
-  parameter.name = name;
-  parameter.value = value;
-  config.strs.push_back(parameter);
-  return reconfigure(config);
 }
 
 void NodeletHarness::publishDense(const PointList& points, const std::string& frame) {

@@ -26,6 +26,22 @@
 namespace pda_registration {
 namespace testing_support {
 
+/// A dynamic_reconfigure request built up one parameter at a time:
+/// harness.reconfigure(ParameterChange().set("k", 3).set("solver", "ceres")).
+class ParameterChange {
+ public:
+  ParameterChange& set(const std::string& name, int value);
+  ParameterChange& set(const std::string& name, double value);
+  ParameterChange& set(const std::string& name, const std::string& value);
+  ParameterChange& set(const std::string& name, const char* value) {
+    return set(name, std::string(value));
+  }
+  const dynamic_reconfigure::Config& config() const { return config_; }
+
+ private:
+  dynamic_reconfigure::Config config_;
+};
+
 class NodeletHarness {
  public:
   /// `nodelet_name` is the nodelet's node name (its private topics live below it).
@@ -38,10 +54,7 @@ class NodeletHarness {
   void closeDense();
   void reopenDense();
   /// Sets live parameters through dynamic_reconfigure's service; false when the call fails.
-  bool reconfigure(const dynamic_reconfigure::Config& config);
-  bool setParameter(const std::string& name, int value);
-  bool setParameter(const std::string& name, double value);
-  bool setParameter(const std::string& name, const std::string& value);
+  bool reconfigure(const ParameterChange& change);
   /// Static tf dense_frame -> sparse_frame (the seed).
   void publishSeed(const Eigen::Isometry3d& T_dense_sparse, const std::string& dense_frame,
                    const std::string& sparse_frame);

@@ -49,10 +49,10 @@ TEST(NodeletLargeMap, IndexesOnlyTheSparseMapsReach) {
     const double indexed = std::stod(harness.diagnosticValue("indexed target points"));
     EXPECT_LT(indexed, 0.05 * static_cast<double>(map.points.size())) << "place " << i;
     EXPECT_GT(indexed, 0.5 * static_cast<double>(room.target.size())) << "place " << i;
-    std::cout << "large map, place " << i << ": indexed " << indexed << " of "
-              << map.points.size() << " points; alignment "
-              << harness.diagnosticValue("alignment time [ms]") << " ms; resident "
-              << harness.diagnosticValue("resident memory [MB]") << " MB" << std::endl;
+    std::cout << "large map, place " << i << ": indexed " << indexed << " of " << map.points.size()
+              << " points; alignment " << harness.diagnosticValue("alignment time [ms]")
+              << " ms; resident " << harness.diagnosticValue("resident memory [MB]") << " MB"
+              << std::endl;
   }
 }
 

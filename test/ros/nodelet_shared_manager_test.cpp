@@ -44,15 +44,10 @@ TEST(NodeletSharedManager, OtherNodeletsKeepFlowingWhileAligning) {
   ASSERT_GT(relay.getNumPublishers(), 0u) << "the relay nodelet did not come up";
 
   // Slow, exhaustive alignments (every point in every run, 10 candidates, 10 EM iterations).
-  dynamic_reconfigure::Config slow;
-  for (const auto& entry : std::vector<std::pair<std::string, int>>{
-           {"coarse_stride", 1}, {"k", 10}, {"em_iterations", 10}}) {
-    dynamic_reconfigure::IntParameter p;
-    p.name = entry.first;
-    p.value = entry.second;
-    slow.ints.push_back(p);
-  }
-  ASSERT_TRUE(harness.reconfigure(slow));
+  ASSERT_TRUE(harness.reconfigure(testing_support::ParameterChange()
+                                      .set("coarse_stride", 1)
+                                      .set("k", 10)
+                                      .set("em_iterations", 10)));
   harness.publishSeed(data.T_target_source * randomPerturbation(3.0, 0.15, 2), "dense_map",
                       "sparse_map");
   harness.publishDense(data.target, "dense_map");
@@ -96,8 +91,8 @@ TEST(NodeletSharedManager, OtherNodeletsKeepFlowingWhileAligning) {
     std::lock_guard<std::mutex> lock(mutex);
     times = relayed;
   }
-  EXPECT_GE(times.size(), static_cast<size_t>(0.95 * sent)) << "relayed " << times.size() << " of "
-                                                           << sent;
+  EXPECT_GE(times.size(), static_cast<size_t>(0.95 * sent))
+      << "relayed " << times.size() << " of " << sent;
   double longest_gap_ms = 0.0;
   for (size_t i = 1; i < times.size(); ++i) {
     longest_gap_ms = std::max(longest_gap_ms, (times[i] - times[i - 1]).toSec() * 1000.0);

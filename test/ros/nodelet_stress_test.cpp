@@ -65,8 +65,8 @@ TEST(NodeletStress, StaysResponsiveDropsStaleInputsAndKeepsMemoryFlat) {
 
   std::mutex mutex;
   std::vector<ros::WallTime> tf_times, diagnostics_times;
-  ros::Subscriber tf = node.subscribe<tf2_msgs::TFMessage>(
-      "/tf", 1000, [&](const tf2_msgs::TFMessage::ConstPtr& m) {
+  ros::Subscriber tf =
+      node.subscribe<tf2_msgs::TFMessage>("/tf", 1000, [&](const tf2_msgs::TFMessage::ConstPtr& m) {
         for (const auto& t : m->transforms) {
           if (t.child_frame_id != "sparse_map_aligned") continue;
           std::lock_guard<std::mutex> lock(mutex);
@@ -100,7 +100,8 @@ TEST(NodeletStress, StaysResponsiveDropsStaleInputsAndKeepsMemoryFlat) {
     dense_maps.push_back(toPointCloud2(map, header));
   }
   header.frame_id = "sparse_map";
-  const sensor_msgs::PointCloud2 sparse = toPointCloud2(jitteredCopies(data.source, 100000, 0.01, 3), header);
+  const sensor_msgs::PointCloud2 sparse =
+      toPointCloud2(jitteredCopies(data.source, 100000, 0.01, 3), header);
   ASSERT_EQ(dense_maps[0].width, 1000000u);
   ASSERT_EQ(sparse.width, 100000u);
   harness.publishSeed(data.T_target_source * randomPerturbation(2.0, 0.1, 5), "dense_map",
@@ -156,16 +157,17 @@ TEST(NodeletStress, StaysResponsiveDropsStaleInputsAndKeepsMemoryFlat) {
   double tf_gap, diagnostics_gap;
   {
     std::lock_guard<std::mutex> lock(mutex);
-    latencies.assign(latencies_ms.begin() + static_cast<long>(transforms_start), latencies_ms.end());
+    latencies.assign(latencies_ms.begin() + static_cast<long>(transforms_start),
+                     latencies_ms.end());
     tf_gap = longestGap(tf_times, start, end);
     diagnostics_gap = longestGap(diagnostics_times, start, end);
   }
   std::cout << "stress: " << duration << " s, sent " << sparse_sent << " sparse (100k) + "
-            << dense_sent << " dense (1M); " << aligned << " alignments accepted, "
-            << dropped << " stale inputs dropped; latency median " << percentile(latencies, 0.5)
-            << " ms, p95 " << percentile(latencies, 0.95) << " ms; RSS " << rss_start << " -> "
-            << rss_end << " MB (every 5 s:" << rss_series << "); longest gaps: tf " << tf_gap * 1000.0 << " ms, diagnostics "
-            << diagnostics_gap * 1000.0 << " ms" << std::endl;
+            << dense_sent << " dense (1M); " << aligned << " alignments accepted, " << dropped
+            << " stale inputs dropped; latency median " << percentile(latencies, 0.5) << " ms, p95 "
+            << percentile(latencies, 0.95) << " ms; RSS " << rss_start << " -> " << rss_end
+            << " MB (every 5 s:" << rss_series << "); longest gaps: tf " << tf_gap * 1000.0
+            << " ms, diagnostics " << diagnostics_gap * 1000.0 << " ms" << std::endl;
 
   // Responsive: the 10 Hz tf re-broadcast never paused for a second, nor the 1 Hz diagnostics
   // for three.

@@ -41,7 +41,7 @@ AlignedBox reachableRegion(const PointList& source, const Eigen::Isometry3d& T,
 
 /// How the index is built; a change of any field re-indexes on the next prepare().
 struct TargetIndexing {
-  double voxel_size = 0.0;         ///< target downsampling before indexing (0 = off)
+  double voxel_size = 0.0;          ///< target downsampling before indexing (0 = off)
   double normal_voxel_size = 0.15;  ///< finest voxel of the normal map
   /// Targets with more finite points than this are cropped to the source's reach (0 = never).
   size_t crop_above_points = 0;
