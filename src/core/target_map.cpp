@@ -87,34 +87,33 @@ bool TargetMap::prepare(const TargetIndexing& indexing, const AlignedBox& region
 
 bool TargetMap::build(const TargetIndexing& indexing, const AlignedBox* crop) {
   const auto start = std::chrono::steady_clock::now();
-  // Recover the cloud from an index that took it over; large clouds move to single precision
-  // once they are first cropped.
+  // Recover the cloud from an index that took it over.
   if (index_owns_cloud_ && index_) whole_ = index_->points();
   index_owns_cloud_ = false;
   index_.reset();
   normals_.reset();
   have_indexing_ = false;
-  if (crop && compact_.empty()) {
-    compact_.reserve(whole_.size());
-    for (const Point& p : whole_) compact_.push_back(p.cast<float>());
-    whole_.clear();
-    whole_.shrink_to_fit();
-  }
+  cropped_ = false;
 
   PointList points;
-  cropped_ = false;
   try {
-    if (!compact_.empty()) {
+    // Count first: a crop that would keep most of the cloud is not worth converting for.
+    if (crop) {
       size_t inside = 0;
-      for (const Eigen::Vector3f& p : compact_) {
-        if (!crop || crop->contains(p.cast<double>())) ++inside;
-      }
-      if (crop && static_cast<double>(inside) <
-                      kWorthCroppingFraction * static_cast<double>(compact_.size())) {
-        cropped_ = true;
-        indexed_region_ = *crop;
-      }
-      points.reserve(cropped_ ? inside : compact_.size());
+      for (const Point& p : whole_) inside += crop->contains(p) ? 1 : 0;
+      for (const Eigen::Vector3f& p : compact_) inside += crop->contains(p.cast<double>()) ? 1 : 0;
+      cropped_ = static_cast<double>(inside) <
+                 kWorthCroppingFraction * static_cast<double>(cloudSize());
+      if (cropped_) indexed_region_ = *crop;
+    }
+    if (cropped_ && compact_.empty()) {
+      // A large cloud moves to single precision once it is first cropped.
+      compact_.reserve(whole_.size());
+      for (const Point& p : whole_) compact_.push_back(p.cast<float>());
+      whole_ = PointList();
+    }
+    if (!compact_.empty()) {
+      if (!cropped_) points.reserve(compact_.size());
       for (const Eigen::Vector3f& p : compact_) {
         const Point q = p.cast<double>();
         if (!cropped_ || crop->contains(q)) points.push_back(q);
