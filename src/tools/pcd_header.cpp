@@ -33,6 +33,10 @@ bool checkPcdHeader(const std::string& path, std::string* error) {
     *error = "cannot open";
     return false;
   }
+  return checkPcdHeader(file, error);
+}
+
+bool checkPcdHeader(std::istream& file, std::string* error) {
   std::map<std::string, std::vector<std::string>> header;
   std::string line;
   // A header is a few hundred bytes; 64 lines without DATA means this is not one.
