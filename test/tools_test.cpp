@@ -93,6 +93,25 @@ TEST(CommandLine, ParsesAndReportsBadFlags) {
   EXPECT_TRUE(std::isinf(list[2]));
 }
 
+// Found by the command_line fuzzer (test/fuzz/regressions/command_line/): a carriage return or
+// newline inside an argument was echoed raw, so the "one-line" error spanned or overwrote lines.
+TEST(CommandLine, ErrorsEscapeControlCharactersAndStayOneLine) {
+  const char* stray[] = {"tool", "-\rtranslation-epsilon"};
+  CommandLine cl({"k"}, {});
+  EXPECT_FALSE(cl.parse(2, stray));
+  EXPECT_EQ(cl.error(), "unexpected argument '-\\rtranslation-epsilon'");
+
+  const char* bad_value[] = {"tool", "--k", "1\n2", "--nu", "3,\x1b[2J"};
+  CommandLine cl2({"k", "nu"}, {});
+  ASSERT_TRUE(cl2.parse(5, bad_value));
+  int k = 0;
+  EXPECT_FALSE(cl2.integer("k", &k, 1, 100));
+  EXPECT_EQ(cl2.error(), "--k: '1\\n2' is not an integer in [1, 100]");
+  std::vector<double> nu;
+  EXPECT_FALSE(cl2.numberList("nu", &nu, 0.0, 10.0));
+  EXPECT_EQ(cl2.error(), "--nu: '\\x1b[2J' is not a number in [0, 10]");
+}
+
 TEST(CloudIo, ReadsPlyAndPcdAndRejectsGarbage) {
   const PointList points = testing_support::makePlane(1.0, 0.1);
   const std::string ply = temporaryPath("plane.ply"), pcd = temporaryPath("plane.pcd");
@@ -128,6 +147,7 @@ TEST(PdaAlign, UsageErrorsExitWithCodeTwoAndOneLine) {
       {clouds + " --k ten", "--k: 'ten'"},
       {clouds + " --radius -1", "--radius"},
       {clouds + " --method foo", "--method: 'foo'"},
+      {clouds + " --method 'a\nb'", "--method: 'a\\nb'"},  // a newline, quoted by the shell
       {clouds + " --solver fast", "--solver: 'fast'"},
       {clouds + " --initial " + bad_matrix, "expected 16 numbers"},
       {"--target /nonexistent.pcd --source " + data + "source.pcd", "cannot open"},
