@@ -139,13 +139,18 @@ TEST(InitialTransform, ReadsSixSevenOrSixteenNumbersAndRefusesTheRest) {
 }
 
 // Found by the initial_transform fuzzer (test/fuzz/regressions/initial_transform/): a quaternion
-// with a component beyond ~1e154 overflowed its norm to Inf and was read as the identity.
+// with components beyond ~1e154 overflowed its norm to Inf and was read as the identity; the
+// second one's norm exceeds even DBL_MAX.
 TEST(InitialTransform, HugeQuaternionIsStillItsRotation) {
   Eigen::Isometry3d T;
   std::string error;
   ASSERT_TRUE(initialTransformFromList({0, 0, 0, -1.1e217, 0, 0, 0}, &T, &error)) << error;
   EXPECT_TRUE(T.linear().isApprox(Eigen::Vector3d(1, -1, -1).asDiagonal().toDenseMatrix()))
       << T.linear();
+  ASSERT_TRUE(initialTransformFromList({1, 2, 0.5, 0, 0, -3.6e307, -1.76e308}, &T, &error))
+      << error;
+  const Eigen::Quaterniond same_direction(-1.76, 0, 0, -0.36);
+  EXPECT_TRUE(T.linear().isApprox(same_direction.normalized().toRotationMatrix())) << T.linear();
 }
 
 Associations threePointsWithCandidates() {

@@ -31,14 +31,14 @@ bool initialTransformFromList(const std::vector<double>& v, Eigen::Isometry3d* T
     T->translation() = Eigen::Vector3d(v[0], v[1], v[2]);
   } else if (v.size() == 7) {
     const Eigen::Vector4d q(v[6], v[3], v[4], v[5]);  // w x y z
-    // stableNorm: norm() overflows to Inf for components near 1e155 and normalising by Inf
-    // would silently give the identity instead of the rotation asked for.
-    const double norm = q.stableNorm();
-    if (norm < 1e-6) {
+    if (q.stableNorm() < 1e-6) {
       *error = "~initial_transform: zero quaternion";
       return false;
     }
-    const Eigen::Vector4d unit = q / norm;
+    // Scaled by its largest component first: the norm of large components (from ~1e154, and
+    // even stableNorm's near DBL_MAX) overflows to Inf, and dividing by Inf silently gave the
+    // identity instead of the rotation asked for.
+    const Eigen::Vector4d unit = (q / q.cwiseAbs().maxCoeff()).normalized();
     T->linear() = Eigen::Quaterniond(unit[0], unit[1], unit[2], unit[3]).toRotationMatrix();
     T->translation() = Eigen::Vector3d(v[0], v[1], v[2]);
   } else {
