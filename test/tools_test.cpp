@@ -7,10 +7,12 @@
 #include <cstdio>
 #include <fstream>
 #include <regex>
+#include <sstream>
 
 #include "pda_registration/core/transform_io.hpp"
 #include "pda_registration/tools/cloud_io.hpp"
 #include "pda_registration/tools/command_line.hpp"
+#include "pda_registration/tools/pcd_header.hpp"
 #include "test_support/command_run.hpp"
 #include "test_support/shared_data.hpp"
 #include "test_support/synthetic_scene.hpp"
@@ -132,6 +134,28 @@ TEST(CloudIo, ReadsPlyAndPcdAndRejectsGarbage) {
   EXPECT_FALSE(loadPointCloudFile(temporaryPath("cloud.xyz"), &loaded, &error));
   EXPECT_FALSE(loadPointCloudFile("/nonexistent.pcd", &loaded, &error));
   EXPECT_NE(error.find("cannot open"), std::string::npos);
+}
+
+// Found by review while writing the pcd_header fuzzer, confirmed by its unsigned-overflow check
+// (test/fuzz/regressions/pcd_header/): WIDTH x HEIGHT and POINTS x point size wrapped around
+// 2^64, so these headers passed as consistent. (PCL 1.13 happens to refuse both itself.)
+TEST(PcdHeader, CountsWhoseProductsOverflowAreRefused) {
+  std::string error;
+  std::istringstream cells_wrap(
+      "FIELDS x y z\nSIZE 4 4 4\nTYPE F F F\nWIDTH 4294967296\nHEIGHT 4294967296\nPOINTS 0\n"
+      "DATA binary\n");
+  EXPECT_FALSE(checkPcdHeader(cells_wrap, &error));
+  EXPECT_EQ(error, "PCD header: WIDTH x HEIGHT does not equal POINTS");
+  std::istringstream bytes_wrap(
+      "FIELDS x y\nSIZE 8 8\nTYPE F F\nCOUNT 536870912 536870912\nWIDTH 2147483648\nHEIGHT 1\n"
+      "POINTS 2147483648\nDATA binary\n");
+  EXPECT_FALSE(checkPcdHeader(bytes_wrap, &error));
+  EXPECT_EQ(error, "PCD data is shorter than POINTS x point size");
+  std::istringstream good(
+      "FIELDS x y z\nSIZE 4 4 4\nTYPE F F F\nWIDTH 2\nHEIGHT 1\nPOINTS 2\n"
+      "DATA binary\n" +
+      std::string(24, '\0'));
+  EXPECT_TRUE(checkPcdHeader(good, &error)) << error;
 }
 
 TEST(PdaAlign, UsageErrorsExitWithCodeTwoAndOneLine) {
