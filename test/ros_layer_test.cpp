@@ -138,6 +138,17 @@ TEST(InitialTransform, ReadsSixSevenOrSixteenNumbersAndRefusesTheRest) {
   EXPECT_NE(error.find("NaN or Inf"), std::string::npos) << error;
 }
 
+// Found by the initial_transform fuzzer (regressions/initial_transform/): huge finite entries made
+// the orthonormality error Inf - Inf = NaN, which passed "> 1e-3", and the transform came out NaN.
+TEST(InitialTransform, HugeEntriesAreNotARotation) {
+  Eigen::Isometry3d T;
+  std::string error;
+  EXPECT_FALSE(initialTransformFromList({2.7e154, -3.4e221, 0, 0, -3.4e221, -1.7e308, -1.2e217, 0,
+                                         -3.4e221, 0, -1.7e308, 0, 0, 0, 0, 1},
+                                        &T, &error));
+  EXPECT_NE(error.find("not a rotation"), std::string::npos) << error;
+}
+
 // Found by the initial_transform fuzzer (test/fuzz/regressions/initial_transform/): a quaternion
 // with components beyond ~1e154 overflowed its norm to Inf and was read as the identity; the
 // second one's norm exceeds even DBL_MAX.

@@ -55,6 +55,13 @@ TEST(TransformIo, ParsesRoundTripsAndRejectsMalformedMatrices) {
   EXPECT_FALSE(parseTransform("1 0 0 0 0 1 0 0 0 0 1 0 0 0 1 1", &T, &error));
   EXPECT_NE(error.find("last row"), std::string::npos);
   EXPECT_FALSE(parseTransform("1 0 0 nan 0 1 0 0 0 0 1 0 0 0 0 1", &T, &error));
+  // Found by the initial_transform fuzzer, the same check here: huge finite entries made the
+  // orthonormality error Inf - Inf = NaN, which passed "> 1e-3" (regressions/transform_matrix/).
+  EXPECT_FALSE(
+      parseTransform("2.7e154 -3.4e221 0 0  -3.4e221 -1.7e308 -1.2e217 0 "
+                     "-3.4e221 0 -1.7e308 0  0 0 0 1",
+                     &T, &error));
+  EXPECT_NE(error.find("not a rotation"), std::string::npos) << error;
   EXPECT_FALSE(readTransformFile("/nonexistent/T.txt", &T, &error));
   EXPECT_NE(error.find("cannot open"), std::string::npos);
 }

@@ -17,7 +17,10 @@ bool initialTransformFromList(const std::vector<double>& v, Eigen::Isometry3d* T
     Eigen::Matrix4d m;
     for (int i = 0; i < 16; ++i) m(i / 4, i % 4) = v[i];
     const Eigen::Matrix3d r = m.topLeftCorner<3, 3>();
-    if ((r.transpose() * r - Eigen::Matrix3d::Identity()).norm() > 1e-3 || r.determinant() <= 0) {
+    // Negated so that NaN fails too: products of huge finite entries give Inf - Inf = NaN, and
+    // NaN > 1e-3 is false, which let such a block through and made the transform NaN.
+    if (!((r.transpose() * r - Eigen::Matrix3d::Identity()).norm() <= 1e-3) ||
+        !(r.determinant() > 0)) {
       *error = "~initial_transform: the 3x3 block is not a rotation";
       return false;
     }
