@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <filesystem>
+#include <sstream>
 #include <string>
 #include <vector>
 
@@ -59,9 +60,23 @@ void requireFuzzersBuilt(const std::string& target) {
   ASSERT_TRUE(fs::exists(fuzzerBinary(target))) << fuzzerBinary(target) << " was not built";
 }
 
+/// The lines that name what went wrong and where libFuzzer saved the input.
+std::string findings(const std::string& output) {
+  std::istringstream lines(output);
+  std::string found;
+  for (std::string line; std::getline(lines, line);) {
+    for (const char* key :
+         {"ERROR: ", "runtime error", "INVARIANT VIOLATED", "Test unit written"}) {
+      if (line.find(key) != std::string::npos) found += line + "\n";
+    }
+  }
+  return found;
+}
+
 void expectCleanRun(const CommandRun& run) {
   const std::string output = run.out + run.err;
-  const std::string tail = output.substr(output.size() > 4000 ? output.size() - 4000 : 0);
+  const std::string tail =
+      findings(output) + "...\n" + output.substr(output.size() > 3000 ? output.size() - 3000 : 0);
   EXPECT_EQ(run.exit_code, 0) << tail;
   for (const char* report :
        {"ERROR: AddressSanitizer", "ERROR: libFuzzer", "runtime error", "INVARIANT VIOLATED"}) {
