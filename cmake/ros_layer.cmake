@@ -9,6 +9,7 @@ target_link_libraries(pda_registration_conversions pda_registration_core ${catki
 add_library(pda_registration_ros
   src/ros/alignment_publisher.cpp
   src/ros/association_markers.cpp
+  src/ros/initial_transform.cpp
   src/ros/live_parameters.cpp
   src/ros/map_alignment_nodelet.cpp
   src/ros/node_settings.cpp

@@ -110,6 +110,10 @@ TEST_F(BadInput, NonRigidOrNaNInitialGuess) {
   Eigen::Isometry3d scaled = room_.T_target_source;
   scaled.linear() *= 2.0;
   alignExpectingFailure(&registration_, room_.source, scaled, "initial transform");
+  // Finite but huge: the orthonormality check computes Inf - Inf = NaN, which must not pass.
+  Eigen::Isometry3d huge = room_.T_target_source;
+  huge.linear() << 2.7e154, -3.4e221, 0, -3.4e221, -1.7e308, -1.2e217, -3.4e221, 0, -1.7e308;
+  alignExpectingFailure(&registration_, room_.source, huge, "initial transform");
 }
 
 TEST_F(BadInput, AbsurdParameters) {

@@ -1,8 +1,9 @@
 // The ROS layer's pure parts, without a roscore: PointCloud2 conversion of good and broken
-// messages, association markers, the newest-input mailbox, the acceptance gate and covariance
-// propagation through inversion.
+// messages, the ~initial_transform list, association markers, the newest-input mailbox, the
+// acceptance gate and covariance propagation through inversion.
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <cstring>
 #include <limits>
 #include <thread>
@@ -11,6 +12,7 @@
 #include "pda_registration/core/pose_covariance.hpp"
 #include "pda_registration/core/pose_jacobian.hpp"
 #include "pda_registration/ros/association_markers.hpp"
+#include "pda_registration/ros/initial_transform.hpp"
 #include "pda_registration/ros/latest_input_queue.hpp"
 #include "pda_registration/ros/point_cloud_conversion.hpp"
 
@@ -76,8 +78,9 @@ TEST(PointCloudConversion, RefusesBrokenMessagesWithAReason) {
   const std::vector<Case> cases = {
       {[](sensor_msgs::PointCloud2* m) { m->width = 0; }, "empty cloud"},
       {[](sensor_msgs::PointCloud2* m) { m->data.resize(m->data.size() - 1); }, "data holds"},
-      {[](sensor_msgs::PointCloud2* m) { m->row_step = 1; }, "data holds"},
-      {[](sensor_msgs::PointCloud2* m) { m->width = 1000000; }, "data holds"},
+      {[](sensor_msgs::PointCloud2* m) { m->row_step = 1; }, "shorter than width x point_step"},
+      {[](sensor_msgs::PointCloud2* m) { m->width = 1000000; }, "shorter than width x point_step"},
+      {[](sensor_msgs::PointCloud2* m) { m->height = 1000; }, "data holds"},
       {[](sensor_msgs::PointCloud2* m) { m->fields[1].name = "q"; }, "no 'y' field"},
       {[](sensor_msgs::PointCloud2* m) { m->fields[2].datatype = sensor_msgs::PointField::INT8; },
        "not FLOAT32"},
@@ -97,6 +100,68 @@ TEST(PointCloudConversion, RefusesBrokenMessagesWithAReason) {
     EXPECT_FALSE(out.ok());
     EXPECT_NE(out.error.find(c.reason), std::string::npos) << out.error;
   }
+}
+
+// Found by the point_cloud2 fuzzer (test/fuzz/regressions/point_cloud2/): for huge layouts the
+// size in the error wrapped around 2^64 and named a wrong number of bytes.
+TEST(PointCloudConversion, HugeLayoutsAreRefusedWithTheirTrueSize) {
+  sensor_msgs::PointCloud2 m = cloudOf(somePoints(4));
+  m.width = m.height = 0xFFFFFFFFu;
+  m.row_step = 0xFFFFFFFFu;
+  CloudConversion out = fromPointCloud2(m);
+  EXPECT_EQ(out.error, "row_step 4294967295 is shorter than width x point_step = 51539607540");
+  m.width = 1;
+  m.row_step = 12;
+  out = fromPointCloud2(m);
+  EXPECT_EQ(out.error, "data holds 48 bytes but height x row_step needs 51539607540");
+}
+
+TEST(InitialTransform, ReadsSixSevenOrSixteenNumbersAndRefusesTheRest) {
+  Eigen::Isometry3d T;
+  std::string error;
+  ASSERT_TRUE(initialTransformFromList({1, 2, 3, 0, 0, M_PI / 2}, &T, &error)) << error;
+  EXPECT_TRUE(T.linear().isApprox(
+      Eigen::AngleAxisd(M_PI / 2, Eigen::Vector3d::UnitZ()).toRotationMatrix()));
+  EXPECT_EQ(T.translation(), Eigen::Vector3d(1, 2, 3));
+  ASSERT_TRUE(initialTransformFromList({1, 2, 3, 0, 0, 1, 1}, &T, &error)) << error;
+  EXPECT_TRUE(T.linear().isApprox(
+      Eigen::AngleAxisd(M_PI / 2, Eigen::Vector3d::UnitZ()).toRotationMatrix()));
+  ASSERT_TRUE(
+      initialTransformFromList({0, -1, 0, 4, 1, 0, 0, 5, 0, 0, 1, 6, 0, 0, 0, 1}, &T, &error))
+      << error;
+  EXPECT_EQ(T.translation(), Eigen::Vector3d(4, 5, 6));
+  EXPECT_FALSE(initialTransformFromList({1, 2, 3, 4, 5}, &T, &error));
+  EXPECT_NE(error.find("got 5"), std::string::npos) << error;
+  EXPECT_FALSE(initialTransformFromList({0, 0, 0, 0, 0, 0, 0}, &T, &error));
+  EXPECT_NE(error.find("zero quaternion"), std::string::npos) << error;
+  EXPECT_FALSE(initialTransformFromList({0, 0, 0, 0, 0, std::nan("")}, &T, &error));
+  EXPECT_NE(error.find("NaN or Inf"), std::string::npos) << error;
+}
+
+// Found by the initial_transform fuzzer (regressions/initial_transform/): huge finite entries made
+// the orthonormality error Inf - Inf = NaN, which passed "> 1e-3", and the transform came out NaN.
+TEST(InitialTransform, HugeEntriesAreNotARotation) {
+  Eigen::Isometry3d T;
+  std::string error;
+  EXPECT_FALSE(initialTransformFromList({2.7e154, -3.4e221, 0, 0, -3.4e221, -1.7e308, -1.2e217, 0,
+                                         -3.4e221, 0, -1.7e308, 0, 0, 0, 0, 1},
+                                        &T, &error));
+  EXPECT_NE(error.find("not a rotation"), std::string::npos) << error;
+}
+
+// Found by the initial_transform fuzzer (test/fuzz/regressions/initial_transform/): a quaternion
+// with components beyond ~1e154 overflowed its norm to Inf and was read as the identity; the
+// second one's norm exceeds even DBL_MAX.
+TEST(InitialTransform, HugeQuaternionIsStillItsRotation) {
+  Eigen::Isometry3d T;
+  std::string error;
+  ASSERT_TRUE(initialTransformFromList({0, 0, 0, -1.1e217, 0, 0, 0}, &T, &error)) << error;
+  EXPECT_TRUE(T.linear().isApprox(Eigen::Vector3d(1, -1, -1).asDiagonal().toDenseMatrix()))
+      << T.linear();
+  ASSERT_TRUE(initialTransformFromList({1, 2, 0.5, 0, 0, -3.6e307, -1.76e308}, &T, &error))
+      << error;
+  const Eigen::Quaterniond same_direction(-1.76, 0, 0, -0.36);
+  EXPECT_TRUE(T.linear().isApprox(same_direction.normalized().toRotationMatrix())) << T.linear();
 }
 
 Associations threePointsWithCandidates() {

@@ -7,10 +7,12 @@
 #include <cstdio>
 #include <fstream>
 #include <regex>
+#include <sstream>
 
 #include "pda_registration/core/transform_io.hpp"
 #include "pda_registration/tools/cloud_io.hpp"
 #include "pda_registration/tools/command_line.hpp"
+#include "pda_registration/tools/pcd_header.hpp"
 #include "test_support/command_run.hpp"
 #include "test_support/shared_data.hpp"
 #include "test_support/synthetic_scene.hpp"
@@ -53,6 +55,13 @@ TEST(TransformIo, ParsesRoundTripsAndRejectsMalformedMatrices) {
   EXPECT_FALSE(parseTransform("1 0 0 0 0 1 0 0 0 0 1 0 0 0 1 1", &T, &error));
   EXPECT_NE(error.find("last row"), std::string::npos);
   EXPECT_FALSE(parseTransform("1 0 0 nan 0 1 0 0 0 0 1 0 0 0 0 1", &T, &error));
+  // Found by the initial_transform fuzzer, the same check here: huge finite entries made the
+  // orthonormality error Inf - Inf = NaN, which passed "> 1e-3" (regressions/transform_matrix/).
+  EXPECT_FALSE(
+      parseTransform("2.7e154 -3.4e221 0 0  -3.4e221 -1.7e308 -1.2e217 0 "
+                     "-3.4e221 0 -1.7e308 0  0 0 0 1",
+                     &T, &error));
+  EXPECT_NE(error.find("not a rotation"), std::string::npos) << error;
   EXPECT_FALSE(readTransformFile("/nonexistent/T.txt", &T, &error));
   EXPECT_NE(error.find("cannot open"), std::string::npos);
 }
@@ -93,6 +102,25 @@ TEST(CommandLine, ParsesAndReportsBadFlags) {
   EXPECT_TRUE(std::isinf(list[2]));
 }
 
+// Found by the command_line fuzzer (test/fuzz/regressions/command_line/): a carriage return or
+// newline inside an argument was echoed raw, so the "one-line" error spanned or overwrote lines.
+TEST(CommandLine, ErrorsEscapeControlCharactersAndStayOneLine) {
+  const char* stray[] = {"tool", "-\rtranslation-epsilon"};
+  CommandLine cl({"k"}, {});
+  EXPECT_FALSE(cl.parse(2, stray));
+  EXPECT_EQ(cl.error(), "unexpected argument '-\\rtranslation-epsilon'");
+
+  const char* bad_value[] = {"tool", "--k", "1\n2", "--nu", "3,\x1b[2J"};
+  CommandLine cl2({"k", "nu"}, {});
+  ASSERT_TRUE(cl2.parse(5, bad_value));
+  int k = 0;
+  EXPECT_FALSE(cl2.integer("k", &k, 1, 100));
+  EXPECT_EQ(cl2.error(), "--k: '1\\n2' is not an integer in [1, 100]");
+  std::vector<double> nu;
+  EXPECT_FALSE(cl2.numberList("nu", &nu, 0.0, 10.0));
+  EXPECT_EQ(cl2.error(), "--nu: '\\x1b[2J' is not a number in [0, 10]");
+}
+
 TEST(CloudIo, ReadsPlyAndPcdAndRejectsGarbage) {
   const PointList points = testing_support::makePlane(1.0, 0.1);
   const std::string ply = temporaryPath("plane.ply"), pcd = temporaryPath("plane.pcd");
@@ -115,6 +143,28 @@ TEST(CloudIo, ReadsPlyAndPcdAndRejectsGarbage) {
   EXPECT_NE(error.find("cannot open"), std::string::npos);
 }
 
+// Found by review while writing the pcd_header fuzzer, confirmed by its unsigned-overflow check
+// (test/fuzz/regressions/pcd_header/): WIDTH x HEIGHT and POINTS x point size wrapped around
+// 2^64, so these headers passed as consistent. (PCL 1.13 happens to refuse both itself.)
+TEST(PcdHeader, CountsWhoseProductsOverflowAreRefused) {
+  std::string error;
+  std::istringstream cells_wrap(
+      "FIELDS x y z\nSIZE 4 4 4\nTYPE F F F\nWIDTH 4294967296\nHEIGHT 4294967296\nPOINTS 0\n"
+      "DATA binary\n");
+  EXPECT_FALSE(checkPcdHeader(cells_wrap, &error));
+  EXPECT_EQ(error, "PCD header: WIDTH x HEIGHT does not equal POINTS");
+  std::istringstream bytes_wrap(
+      "FIELDS x y\nSIZE 8 8\nTYPE F F\nCOUNT 536870912 536870912\nWIDTH 2147483648\nHEIGHT 1\n"
+      "POINTS 2147483648\nDATA binary\n");
+  EXPECT_FALSE(checkPcdHeader(bytes_wrap, &error));
+  EXPECT_EQ(error, "PCD data is shorter than POINTS x point size");
+  std::istringstream good(
+      "FIELDS x y z\nSIZE 4 4 4\nTYPE F F F\nWIDTH 2\nHEIGHT 1\nPOINTS 2\n"
+      "DATA binary\n" +
+      std::string(24, '\0'));
+  EXPECT_TRUE(checkPcdHeader(good, &error)) << error;
+}
+
 TEST(PdaAlign, UsageErrorsExitWithCodeTwoAndOneLine) {
   const std::string data = testing_support::sharedDataDirectory() + "/room_scan/";
   const std::string clouds = "--target " + data + "target.pcd --source " + data + "source.pcd";
@@ -128,6 +178,7 @@ TEST(PdaAlign, UsageErrorsExitWithCodeTwoAndOneLine) {
       {clouds + " --k ten", "--k: 'ten'"},
       {clouds + " --radius -1", "--radius"},
       {clouds + " --method foo", "--method: 'foo'"},
+      {clouds + " --method 'a\nb'", "--method: 'a\\nb'"},  // a newline, quoted by the shell
       {clouds + " --solver fast", "--solver: 'fast'"},
       {clouds + " --initial " + bad_matrix, "expected 16 numbers"},
       {"--target /nonexistent.pcd --source " + data + "source.pcd", "cannot open"},

@@ -39,7 +39,9 @@ bool isSmall(const Increment& increment, const RegistrationParameters& p) {
 bool sanitiseInitialGuess(const Eigen::Isometry3d& initial, Eigen::Isometry3d* out) {
   if (!initial.matrix().allFinite()) return false;
   const Eigen::Matrix3d r = initial.linear();
-  if ((r.transpose() * r - Eigen::Matrix3d::Identity()).norm() > 1e-3 || r.determinant() <= 0.0) {
+  // Negated so that NaN fails too (huge finite entries: Inf - Inf), as the parsers found.
+  if (!((r.transpose() * r - Eigen::Matrix3d::Identity()).norm() <= 1e-3) ||
+      !(r.determinant() > 0.0)) {
     return false;
   }
   const Eigen::JacobiSVD<Eigen::Matrix3d> svd(r, Eigen::ComputeFullU | Eigen::ComputeFullV);

@@ -42,7 +42,10 @@ bool parseTransform(const std::string& text, Eigen::Isometry3d* T, std::string* 
     return false;
   }
   const Eigen::Matrix3d r = m.topLeftCorner<3, 3>();
-  if ((r.transpose() * r - Eigen::Matrix3d::Identity()).norm() > 1e-3 || r.determinant() <= 0.0) {
+  // Negated so that NaN fails too: products of huge finite entries give Inf - Inf = NaN, and
+  // NaN > 1e-3 is false, which let such a matrix through as a "rotation".
+  if (!((r.transpose() * r - Eigen::Matrix3d::Identity()).norm() <= 1e-3) ||
+      !(r.determinant() > 0.0)) {
     *error = "upper-left 3x3 block is not a rotation";
     return false;
   }

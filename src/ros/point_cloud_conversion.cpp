@@ -70,12 +70,19 @@ CloudConversion fromPointCloud2(const sensor_msgs::PointCloud2& m) {
       !findCoordinate(m, "z", &z, &out.error)) {
     return out;
   }
+  // findCoordinate put x, y and z inside point_step, so point_step >= 4 here. Both products have
+  // 32-bit factors: neither the checks nor the numbers in the messages can wrap around.
   const uint64_t row_bytes = static_cast<uint64_t>(m.width) * m.point_step;
-  if (m.point_step == 0 || m.row_step < row_bytes ||
-      static_cast<uint64_t>(m.row_step) * m.height > m.data.size()) {
+  const uint64_t data_bytes = static_cast<uint64_t>(m.row_step) * m.height;
+  if (m.row_step < row_bytes) {
     std::ostringstream error;
-    error << "data holds " << m.data.size() << " bytes but width x height x point_step needs "
-          << count * m.point_step << " (row_step " << m.row_step << ")";
+    error << "row_step " << m.row_step << " is shorter than width x point_step = " << row_bytes;
+    out.error = error.str();
+    return out;
+  }
+  if (data_bytes > m.data.size()) {
+    std::ostringstream error;
+    error << "data holds " << m.data.size() << " bytes but height x row_step needs " << data_bytes;
     out.error = error.str();
     return out;
   }

@@ -20,6 +20,24 @@ bool parseNumber(const std::string& text, double* value, bool allow_infinity) {
   return true;
 }
 
+std::string quoted(const std::string& text) {
+  std::string out = "'";
+  for (const char c : text) {
+    const auto byte = static_cast<unsigned char>(c);
+    if (c == '\n') {
+      out += "\\n";
+    } else if (c == '\r') {
+      out += "\\r";
+    } else if (byte < 0x20 || byte == 0x7f) {
+      static const char kHex[] = "0123456789abcdef";
+      out += std::string("\\x") + kHex[byte >> 4] + kHex[byte & 0xf];
+    } else {
+      out += c;
+    }
+  }
+  return out + "'";
+}
+
 CommandLine::CommandLine(std::set<std::string> value_flags, std::set<std::string> switch_flags)
     : value_flags_(std::move(value_flags)), switch_flags_(std::move(switch_flags)) {}
 
@@ -31,7 +49,7 @@ bool CommandLine::setError(const std::string& message) {
 bool CommandLine::parse(int argc, const char* const* argv) {
   for (int i = 1; i < argc; ++i) {
     const std::string argument = argv[i];
-    if (argument.rfind("--", 0) != 0) return setError("unexpected argument '" + argument + "'");
+    if (argument.rfind("--", 0) != 0) return setError("unexpected argument " + quoted(argument));
     std::string flag = argument.substr(2);
     std::string value;
     const size_t equals = flag.find('=');
@@ -50,7 +68,7 @@ bool CommandLine::parse(int argc, const char* const* argv) {
       }
       values_[flag] = value;
     } else {
-      return setError("unknown flag '--" + flag + "' (see --help)");
+      return setError("unknown flag " + quoted("--" + flag) + " (see --help)");
     }
   }
   return true;
@@ -69,8 +87,8 @@ bool CommandLine::number(const std::string& flag, double* value, double min, dou
   const bool allow_infinity = std::isinf(max);
   if (!parseNumber(text(flag), &v, allow_infinity) || v < min || v > max) {
     std::ostringstream message;
-    message << "--" << flag << ": '" << text(flag) << "' is not a number in [" << min << ", " << max
-            << "]";
+    message << "--" << flag << ": " << quoted(text(flag)) << " is not a number in [" << min << ", "
+            << max << "]";
     return setError(message.str());
   }
   *value = v;
@@ -84,7 +102,7 @@ bool CommandLine::integer(const std::string& flag, int* value, int min, int max)
   const long v = std::strtol(t.c_str(), &end, 10);
   if (t.empty() || *end != '\0' || v < min || v > max) {
     std::ostringstream message;
-    message << "--" << flag << ": '" << t << "' is not an integer in [" << min << ", " << max
+    message << "--" << flag << ": " << quoted(t) << " is not an integer in [" << min << ", " << max
             << "]";
     return setError(message.str());
   }
@@ -102,8 +120,8 @@ bool CommandLine::numberList(const std::string& flag, std::vector<double>* value
     double v = 0.0;
     if (!parseNumber(item, &v, allow_infinity) || v < min || (v > max && !std::isinf(v))) {
       std::ostringstream message;
-      message << "--" << flag << ": '" << item << "' is not a number in [" << min << ", " << max
-              << "]" << (allow_infinity ? " or inf" : "");
+      message << "--" << flag << ": " << quoted(item) << " is not a number in [" << min << ", "
+              << max << "]" << (allow_infinity ? " or inf" : "");
       return setError(message.str());
     }
     parsed.push_back(v);

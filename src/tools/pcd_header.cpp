@@ -33,6 +33,10 @@ bool checkPcdHeader(const std::string& path, std::string* error) {
     *error = "cannot open";
     return false;
   }
+  return checkPcdHeader(file, error);
+}
+
+bool checkPcdHeader(std::istream& file, std::string* error) {
   std::map<std::string, std::vector<std::string>> header;
   std::string line;
   // A header is a few hundred bytes; 64 lines without DATA means this is not one.
@@ -68,12 +72,16 @@ bool checkPcdHeader(const std::string& path, std::string* error) {
       *error = "PCD header: bad SIZE/TYPE/COUNT for field '" + header["FIELDS"][i] + "'";
       return false;
     }
+    // At most 8 x 10^12 per field and 2048 fields on a 4096-byte line: cannot overflow.
     point_size += size * count;
   }
-  unsigned long long width = 0, height = 0, points = 0;
+  // Counts have up to 12 digits, so products of two can pass 2^64: multiplied with an overflow
+  // check, or a wrapped product could make an absurd header look consistent.
+  unsigned long long width = 0, height = 0, points = 0, cells = 0;
   if (header["WIDTH"].size() != 1 || header["HEIGHT"].size() != 1 || header["POINTS"].size() != 1 ||
       !parseCount(header["WIDTH"][0], &width) || !parseCount(header["HEIGHT"][0], &height) ||
-      !parseCount(header["POINTS"][0], &points) || width * height != points) {
+      !parseCount(header["POINTS"][0], &points) || __builtin_mul_overflow(width, height, &cells) ||
+      cells != points) {
     *error = "PCD header: WIDTH x HEIGHT does not equal POINTS";
     return false;
   }
@@ -86,7 +94,9 @@ bool checkPcdHeader(const std::string& path, std::string* error) {
   file.seekg(0, std::ios::end);
   const unsigned long long remaining =
       data_start < 0 ? 0 : static_cast<unsigned long long>(file.tellg() - data_start);
-  if (data == "binary" && remaining < points * point_size) {
+  unsigned long long data_bytes = 0;
+  if (data == "binary" &&
+      (__builtin_mul_overflow(points, point_size, &data_bytes) || remaining < data_bytes)) {
     *error = "PCD data is shorter than POINTS x point size";
     return false;
   }

@@ -72,10 +72,11 @@ int main(int argc, char** argv) {
   if (!readSettingsFlags(&cl, &settings)) return usageError(cl.error());
   const std::string method = cl.text("method", "pda");
   if (!isKnownMethod(method))
-    return usageError("--method: '" + method + "' is not pda, icp, gicp or ndt");
+    return usageError("--method: " + quoted(method) + " is not pda, icp, gicp or ndt");
   const std::vector<std::string> compared = splitList(cl.text("compare"));
   for (const std::string& m : compared) {
-    if (!isKnownMethod(m)) return usageError("--compare: '" + m + "' is not pda, icp, gicp or ndt");
+    if (!isKnownMethod(m))
+      return usageError("--compare: " + quoted(m) + " is not pda, icp, gicp or ndt");
   }
   int repeat = 3;
   if (!cl.integer("repeat", &repeat, 1, 1000)) return usageError(cl.error());

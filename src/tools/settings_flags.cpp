@@ -127,11 +127,12 @@ bool readSettingsFlags(CommandLine* cl, MethodSettings* settings,
     return false;
   }
   if (given("solver") && !parseSolver(cl->text("solver"), &p.solver)) {
-    return cl->setError("--solver: '" + cl->text("solver") +
-                        "' is not gauss_newton, closed_form or ceres");
+    return cl->setError("--solver: " + quoted(cl->text("solver")) +
+                        " is not gauss_newton, closed_form or ceres");
   }
   if (given("sigma-mode") && !parseSigmaMode(cl->text("sigma-mode"), &p.sigma_mode)) {
-    return cl->setError("--sigma-mode: '" + cl->text("sigma-mode") + "' is not estimated or fixed");
+    return cl->setError("--sigma-mode: " + quoted(cl->text("sigma-mode")) +
+                        " is not estimated or fixed");
   }
   // The baselines share the inputs' limits: same radius, same voxel sizes.
   b.max_correspondence_distance = p.radius;

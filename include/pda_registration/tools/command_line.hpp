@@ -39,4 +39,8 @@ class CommandLine {
 /// Parses one number; "inf" only when allow_infinity. False on trailing junk or NaN.
 bool parseNumber(const std::string& text, double* value, bool allow_infinity);
 
+/// `text` in single quotes with control characters escaped (\n, \r, \xNN): an error that echoes
+/// a command-line word stays one line, whatever bytes the word holds.
+std::string quoted(const std::string& text);
+
 }  // namespace pda_registration
