@@ -88,7 +88,7 @@ class FuzzSmoke : public ::testing::TestWithParam<std::string> {};
 
 TEST_P(FuzzSmoke, ShortRunOverTheSeedCorpus) {
   const std::string target = GetParam();
-  requireFuzzersBuilt(target);
+  ASSERT_NO_FATAL_FAILURE(requireFuzzersBuilt(target));
   ASSERT_TRUE(fs::is_directory(seedFolder(target))) << "no seed corpus " << seedFolder(target);
   // libFuzzer writes new inputs into the first folder: a temporary one, so the seeds stay as
   // they are. Crash artifacts go there too.
@@ -105,7 +105,7 @@ TEST_P(FuzzSmoke, ShortRunOverTheSeedCorpus) {
 
 TEST_P(FuzzSmoke, ReplaysEveryRegressionInput) {
   const std::string target = GetParam();
-  requireFuzzersBuilt(target);
+  ASSERT_NO_FATAL_FAILURE(requireFuzzersBuilt(target));
   // Files (not folders) on libFuzzer's command line are each run once.
   for (const std::string& input : regressionInputs(target)) {
     SCOPED_TRACE(input);
