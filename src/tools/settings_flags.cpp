@@ -138,6 +138,13 @@ bool readSettingsFlags(CommandLine* cl, MethodSettings* settings,
   b.max_correspondence_distance = p.radius;
   b.source_voxel_size = p.source_voxel_size;
   b.target_voxel_size = p.target_voxel_size;
+  // Flags that pass one by one can still clash (closed_form needs anisotropy 1): a usage error
+  // now, not a failed alignment after the clouds have loaded. (With grids, the skipped flags
+  // are not in `p` yet: the grid's own sets are checked where they are made.)
+  if (skip.empty()) {
+    const std::string clash = validateParameters(p);
+    if (!clash.empty()) return cl->setError(clash);
+  }
   return true;
 }
 
