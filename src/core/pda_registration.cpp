@@ -1,6 +1,5 @@
 #include "pda_registration/core/pda_registration.hpp"
 
-#include <Eigen/SVD>
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -14,6 +13,7 @@
 #include "pda_registration/core/closed_form_solver.hpp"
 #include "pda_registration/core/degeneracy.hpp"
 #include "pda_registration/core/gauss_newton_solver.hpp"
+#include "pda_registration/core/nearest_rotation.hpp"
 #include "pda_registration/core/point_filter.hpp"
 #include "pda_registration/core/pose_covariance.hpp"
 
@@ -38,15 +38,10 @@ bool isSmall(const Increment& increment, const RegistrationParameters& p) {
 // anything that is not close to a rigid transform.
 bool sanitiseInitialGuess(const Eigen::Isometry3d& initial, Eigen::Isometry3d* out) {
   if (!initial.matrix().allFinite()) return false;
-  const Eigen::Matrix3d r = initial.linear();
-  // Negated so that NaN fails too (huge finite entries: Inf - Inf), as the parsers found.
-  if (!((r.transpose() * r - Eigen::Matrix3d::Identity()).norm() <= 1e-3) ||
-      !(r.determinant() > 0.0)) {
-    return false;
-  }
-  const Eigen::JacobiSVD<Eigen::Matrix3d> svd(r, Eigen::ComputeFullU | Eigen::ComputeFullV);
+  Eigen::Matrix3d rotation;
+  if (!nearestRotation(initial.linear(), &rotation)) return false;
   *out = Eigen::Isometry3d::Identity();
-  out->linear() = svd.matrixU() * svd.matrixV().transpose();
+  out->linear() = rotation;
   out->translation() = initial.translation();
   return true;
 }

@@ -1,11 +1,12 @@
 #include "pda_registration/core/transform_io.hpp"
 
-#include <Eigen/SVD>
 #include <cmath>
 #include <fstream>
 #include <iomanip>
 #include <sstream>
 #include <vector>
+
+#include "pda_registration/core/nearest_rotation.hpp"
 
 namespace pda_registration {
 
@@ -41,17 +42,13 @@ bool parseTransform(const std::string& text, Eigen::Isometry3d* T, std::string* 
     *error = "last row must be 0 0 0 1";
     return false;
   }
-  const Eigen::Matrix3d r = m.topLeftCorner<3, 3>();
-  // Negated so that NaN fails too: products of huge finite entries give Inf - Inf = NaN, and
-  // NaN > 1e-3 is false, which let such a matrix through as a "rotation".
-  if (!((r.transpose() * r - Eigen::Matrix3d::Identity()).norm() <= 1e-3) ||
-      !(r.determinant() > 0.0)) {
+  Eigen::Matrix3d rotation;
+  if (!nearestRotation(m.topLeftCorner<3, 3>(), &rotation)) {
     *error = "upper-left 3x3 block is not a rotation";
     return false;
   }
-  const Eigen::JacobiSVD<Eigen::Matrix3d> svd(r, Eigen::ComputeFullU | Eigen::ComputeFullV);
   *T = Eigen::Isometry3d::Identity();
-  T->linear() = svd.matrixU() * svd.matrixV().transpose();
+  T->linear() = rotation;
   T->translation() = m.topRightCorner<3, 1>();
   return true;
 }

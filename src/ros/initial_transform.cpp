@@ -2,6 +2,8 @@
 
 #include <cmath>
 
+#include "pda_registration/core/nearest_rotation.hpp"
+
 namespace pda_registration {
 
 bool initialTransformFromList(const std::vector<double>& v, Eigen::Isometry3d* T,
@@ -16,15 +18,12 @@ bool initialTransformFromList(const std::vector<double>& v, Eigen::Isometry3d* T
   if (v.size() == 16) {
     Eigen::Matrix4d m;
     for (int i = 0; i < 16; ++i) m(i / 4, i % 4) = v[i];
-    const Eigen::Matrix3d r = m.topLeftCorner<3, 3>();
-    // Negated so that NaN fails too: products of huge finite entries give Inf - Inf = NaN, and
-    // NaN > 1e-3 is false, which let such a block through and made the transform NaN.
-    if (!((r.transpose() * r - Eigen::Matrix3d::Identity()).norm() <= 1e-3) ||
-        !(r.determinant() > 0)) {
+    Eigen::Matrix3d rotation;
+    if (!nearestRotation(m.topLeftCorner<3, 3>(), &rotation)) {
       *error = "~initial_transform: the 3x3 block is not a rotation";
       return false;
     }
-    T->linear() = Eigen::Quaterniond(r).normalized().toRotationMatrix();
+    T->linear() = rotation;
     T->translation() = m.topRightCorner<3, 1>();
   } else if (v.size() == 6) {
     T->linear() = (Eigen::AngleAxisd(v[5], Eigen::Vector3d::UnitZ()) *

@@ -16,6 +16,7 @@
 #include "pda_registration/core/error_metrics.hpp"
 #include "pda_registration/core/perturbation.hpp"
 #include "pda_registration/ros/point_cloud_conversion.hpp"
+#include "pda_registration/tools/statistics.hpp"
 #include "test_support/shared_data.hpp"
 
 namespace pda_registration {
@@ -35,12 +36,6 @@ PointList jitteredCopies(const PointList& base, size_t count, double sigma, uint
     out.push_back(base[i % base.size()] + Point(noise(random), noise(random), noise(random)));
   }
   return out;
-}
-
-double percentile(std::vector<double> values, double q) {
-  if (values.empty()) return 0.0;
-  std::sort(values.begin(), values.end());
-  return values[static_cast<size_t>(q * static_cast<double>(values.size() - 1))];
 }
 
 // Largest gap between consecutive times, and before the first / after the last within [from, to].
