@@ -221,6 +221,22 @@ bool NodeletHarness::waitForFreshDiagnostics(double timeout_s) {
   return waitFor([this, before] { return diagnostics_received_.size() > before; }, timeout_s);
 }
 
+bool NodeletHarness::waitForAcceptedToMatchTransforms(double timeout_s, std::string* detail) {
+  const ros::WallTime end = ros::WallTime::now() + ros::WallDuration(timeout_s);
+  std::string accepted;
+  size_t before = 0, after = 0;
+  while (ros::ok() && ros::WallTime::now() < end) {
+    before = transformCount();
+    if (!waitForFreshDiagnostics((end - ros::WallTime::now()).toSec())) break;
+    accepted = diagnosticValue("accepted");
+    after = transformCount();
+    if (before == after && accepted == std::to_string(after)) return true;
+  }
+  *detail = "diagnostics last said accepted = \"" + accepted + "\" while " +
+            std::to_string(before) + ".." + std::to_string(after) + " transforms had arrived";
+  return false;
+}
+
 geometry_msgs::PoseWithCovarianceStamped NodeletHarness::lastPose() {
   std::lock_guard<std::mutex> lock(mutex_);
   return poses_.empty() ? geometry_msgs::PoseWithCovarianceStamped() : poses_.back();

@@ -90,6 +90,10 @@ class NodeletHarness {
   std::string diagnosticValue(const std::string& key);
   /// Waits for a diagnostics status published after this call.
   bool waitForFreshDiagnostics(double timeout_s);
+  /// Waits until a fresh diagnostics status counts as "accepted" exactly the transforms received.
+  /// While the nodelet keeps aligning, a status can trail or lead the transform in flight, so
+  /// this retries until one agrees; on timeout `detail` says what was seen last.
+  bool waitForAcceptedToMatchTransforms(double timeout_s, std::string* detail);
   /// Everything logged on /rosout so far, one line per message (for failure messages).
   std::string logText();
   /// tf's transform between two frames right now (throws tf2::TransformException).
