@@ -280,6 +280,7 @@ TEST(BagEval, BadArgumentsExitTwoWithOneLine) {
   const std::vector<std::pair<std::string, std::string>> cases = {
       {"", "--bag is required"},
       {"--bag /nonexistent/maps.bag", "cannot read bag"},
+      {"--bag '/nonexistent/a\rb.bag'", "cannot read bag '/nonexistent/a\\rb.bag'"},
       {"--bag " + bag + " --k 0,5", "--k: '0'"},
       {"--bag " + bag + " --nu 5,abc", "--nu: 'abc'"},
       {"--bag " + bag + " --radius 0.5,", "--radius: ''"},

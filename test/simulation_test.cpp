@@ -534,7 +534,8 @@ TEST(PdaSimulateTool, BadFlagsExitWithCodeTwoAndOneLine) {
                                                   "--output " + folder + " --distortion lots",
                                                   "--output " + folder + " --colour red",
                                                   "--output /dev/null/case",
-                                                  "--bag /nonexistent-directory/maps.bag"};
+                                                  "--bag /nonexistent-directory/maps.bag",
+                                                  "--bag '/nonexistent-directory/a\nb.bag'"};
   for (const std::string& arguments : bad_arguments) {
     const CommandRun run = runPdaSimulate(arguments);
     EXPECT_EQ(run.exit_code, 2) << arguments;

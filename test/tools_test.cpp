@@ -183,6 +183,9 @@ TEST(PdaAlign, UsageErrorsExitWithCodeTwoAndOneLine) {
       {clouds + " --solver closed_form", "closed_form needs surface_anisotropy = 1"},
       {clouds + " --initial " + bad_matrix, "expected 16 numbers"},
       {"--target /nonexistent.pcd --source " + data + "source.pcd", "cannot open"},
+      // A path holding a newline is echoed escaped, so the error stays one line.
+      {"--target '/nonexistent\n.pcd' --source " + data + "source.pcd",
+       "cannot open '/nonexistent\\n.pcd'"},
       {"--target " + garbage + " --source " + data + "source.pcd", "not a readable pcd"},
   };
   for (const auto& c : cases) {

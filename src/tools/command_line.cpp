@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <cstdlib>
+#include <iostream>
 #include <sstream>
 
 namespace pda_registration {
@@ -20,8 +21,8 @@ bool parseNumber(const std::string& text, double* value, bool allow_infinity) {
   return true;
 }
 
-std::string quoted(const std::string& text) {
-  std::string out = "'";
+std::string escapeControlCharacters(const std::string& text) {
+  std::string out;
   for (const char c : text) {
     const auto byte = static_cast<unsigned char>(c);
     if (c == '\n') {
@@ -35,7 +36,14 @@ std::string quoted(const std::string& text) {
       out += c;
     }
   }
-  return out + "'";
+  return out;
+}
+
+std::string quoted(const std::string& text) { return "'" + escapeControlCharacters(text) + "'"; }
+
+int reportError(const std::string& tool, const std::string& message) {
+  std::cerr << tool << ": error: " << escapeControlCharacters(message) << "\n";
+  return 2;
 }
 
 CommandLine::CommandLine(std::set<std::string> value_flags, std::set<std::string> switch_flags)

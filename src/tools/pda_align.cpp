@@ -38,11 +38,7 @@ const char* kUsage =
     "  --repeat N              repetitions for --compare timing (3)\n"
     "  --help\n";
 
-int usageError(const std::string& message) {
-  std::cerr << "pda_align: error: " << message << "\n";
-  return 2;
-}
-
+int usageError(const std::string& message) { return reportError("pda_align", message); }
 
 std::vector<std::string> splitList(const std::string& text) {
   std::vector<std::string> items;

@@ -53,10 +53,7 @@ const char* kUsage =
 
 constexpr const char* kToolName = "pda_bag_eval";
 
-int usageError(const std::string& message) {
-  std::cerr << kToolName << ": error: " << message << "\n";
-  return 2;
-}
+int usageError(const std::string& message) { return reportError(kToolName, message); }
 
 std::string formatStamp(const ros::Time& stamp) {
   std::ostringstream text;
@@ -89,7 +86,8 @@ class Progress {
   }
   /// Prints a message on its own line, clearing the progress line first.
   void note(const std::string& text) {
-    std::cerr << (line_open_ ? "\r\033[K" : "") << kToolName << ": " << text << "\n";
+    std::cerr << (line_open_ ? "\r\033[K" : "") << kToolName << ": "
+              << escapeControlCharacters(text) << "\n";
     line_open_ = false;
   }
   void end() {

@@ -59,10 +59,7 @@ std::vector<std::string> split(const std::string& text, char separator) {
   return items;
 }
 
-int fail(const std::string& message) {
-  std::cerr << "pda_benchmark: error: " << message << "\n";
-  return 2;
-}
+int fail(const std::string& message) { return reportError("pda_benchmark", message); }
 
 }  // namespace
 

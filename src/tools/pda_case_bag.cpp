@@ -23,10 +23,7 @@ const char* kUsage =
     "  --sparse-messages N   sparse maps in the bag, at 1 Hz (5)\n"
     "  --help\n";
 
-int fail(const std::string& message) {
-  std::cerr << "pda_case_bag: error: " << message << "\n";
-  return 2;
-}
+int fail(const std::string& message) { return reportError("pda_case_bag", message); }
 
 }  // namespace
 

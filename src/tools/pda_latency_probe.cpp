@@ -35,10 +35,7 @@ using namespace pda_registration;
 
 namespace {
 
-int fail(const std::string& message) {
-  std::cerr << "pda_latency_probe: error: " << message << "\n";
-  return 2;
-}
+int fail(const std::string& message) { return reportError("pda_latency_probe", message); }
 
 }  // namespace
 

@@ -48,10 +48,7 @@ const char* kUsage =
     "  --tf-rate HZ              rate of the seed on /tf (10)\n"
     "  --help\n";
 
-int usageError(const std::string& message) {
-  std::cerr << "pda_simulate: error: " << message << "\n";
-  return 2;
-}
+int usageError(const std::string& message) { return reportError("pda_simulate", message); }
 
 }  // namespace
 

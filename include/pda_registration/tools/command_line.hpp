@@ -39,8 +39,15 @@ class CommandLine {
 /// Parses one number; "inf" only when allow_infinity. False on trailing junk or NaN.
 bool parseNumber(const std::string& text, double* value, bool allow_infinity);
 
-/// `text` in single quotes with control characters escaped (\n, \r, \xNN): an error that echoes
-/// a command-line word stays one line, whatever bytes the word holds.
+/// `text` with control characters escaped (\n, \r, \xNN), so it prints as one line.
+std::string escapeControlCharacters(const std::string& text);
+
+/// `text` in single quotes, escaped as above: an error that echoes a command-line word stays one
+/// line, whatever bytes the word holds.
 std::string quoted(const std::string& text);
+
+/// The tools' one way to fail on bad input: prints "tool: error: message" as one line on stderr
+/// (a path or bag topic in the message may hold any byte) and returns exit code 2.
+int reportError(const std::string& tool, const std::string& message);
 
 }  // namespace pda_registration
