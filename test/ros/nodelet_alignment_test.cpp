@@ -37,7 +37,7 @@ class NodeletAlignment : public ::testing::Test {
 
 TEST_F(NodeletAlignment, ConvergesToGroundTruthAndPublishesEverything) {
   const Eigen::Isometry3d seed = data_.T_target_source * randomPerturbation(5.0, 0.25, 4);
-  harness_->publishSeed(seed, "dense_map", "sparse_map");
+  ASSERT_TRUE(harness_->publishSeed(seed, "dense_map", "sparse_map"));
   harness_->publishDense(data_.target, "dense_map");
   ros::WallDuration(0.5).sleep();  // let the latched map and static tf arrive first
   harness_->publishSparse(data_.source, "sparse_map");

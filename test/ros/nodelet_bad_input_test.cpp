@@ -60,8 +60,8 @@ NodeletHarness* NodeletBadInput::harness_ = nullptr;
 // Runs first (gtest keeps declaration order): no seed on tf and no ~initial_transform.
 TEST_F(NodeletBadInput, A_MissingTfSeed) {
   expectRefused([] { harness_->publishSparse(data_->source, "sparse_map"); }, "no seed for");
-  harness_->publishSeed(data_->T_target_source * randomPerturbation(2.0, 0.1, 1), "dense_map",
-                        "sparse_map");
+  ASSERT_TRUE(harness_->publishSeed(data_->T_target_source * randomPerturbation(2.0, 0.1, 1),
+                                    "dense_map", "sparse_map"));
   ros::WallDuration(0.5).sleep();
   expectStillServing();
 }

@@ -107,13 +107,24 @@ void NodeletHarness::publishRaw(const sensor_msgs::PointCloud2& cloud, bool dens
   (dense ? dense_ : sparse_).publish(cloud);
 }
 
-void NodeletHarness::publishSeed(const Eigen::Isometry3d& T, const std::string& dense_frame,
+bool NodeletHarness::publishSeed(const Eigen::Isometry3d& T, const std::string& dense_frame,
                                  const std::string& sparse_frame) {
   geometry_msgs::TransformStamped seed = tf2::eigenToTransform(T);
   seed.header.stamp = ros::Time::now();
   seed.header.frame_id = dense_frame;
   seed.child_frame_id = sparse_frame;
   static_broadcaster_.sendTransform(seed);
+  const ros::WallTime end = ros::WallTime::now() + ros::WallDuration(5.0);
+  while (ros::ok() && ros::WallTime::now() < end) {
+    try {
+      const Eigen::Isometry3d on_tf = lookup(dense_frame, sparse_frame, 0.0);
+      if (on_tf.isApprox(T, 1e-9)) return true;
+    } catch (const tf2::TransformException&) {
+      // not there yet
+    }
+    ros::WallDuration(0.02).sleep();
+  }
+  return false;
 }
 
 bool NodeletHarness::waitFor(const std::function<bool()>& condition, double timeout_s) {
@@ -159,6 +170,15 @@ bool NodeletHarness::waitForLogContaining(const std::string& text, double timeou
       timeout_s);
 }
 
+bool NodeletHarness::waitForOutputConnections(double timeout_s) {
+  const ros::WallTime end = ros::WallTime::now() + ros::WallDuration(timeout_s);
+  while (ros::ok() && ros::WallTime::now() < end) {
+    if (transform_.getNumPublishers() > 0 && diagnostics_.getNumPublishers() > 0) return true;
+    ros::WallDuration(0.05).sleep();
+  }
+  return false;
+}
+
 bool NodeletHarness::waitForConnections(double timeout_s) {
   const ros::WallTime end = ros::WallTime::now() + ros::WallDuration(timeout_s);
   while (ros::ok() && ros::WallTime::now() < end) {
@@ -173,6 +193,32 @@ bool NodeletHarness::waitForConnections(double timeout_s) {
             dense_.getNumSubscribers(), sparse_.getNumSubscribers(), transform_.getNumPublishers(),
             rosout_.getNumPublishers());
   return false;
+}
+
+bool NodeletHarness::waitForTransformStamped(const ros::Time& stamp, double timeout_s,
+                                             geometry_msgs::TransformStamped* found) {
+  return waitFor(
+      [&] {
+        for (auto it = transforms_.rbegin(); it != transforms_.rend(); ++it) {
+          if (it->header.stamp == stamp) return *found = *it, true;
+        }
+        return false;
+      },
+      timeout_s);
+}
+
+bool NodeletHarness::waitForMarkersStamped(const ros::Time& stamp, double timeout_s,
+                                           visualization_msgs::MarkerArray* found) {
+  return waitFor(
+      [&] {
+        for (auto it = markers_received_.rbegin(); it != markers_received_.rend(); ++it) {
+          if (!it->markers.empty() && it->markers.front().header.stamp == stamp) {
+            return *found = *it, true;
+          }
+        }
+        return false;
+      },
+      timeout_s);
 }
 
 bool NodeletHarness::waitForMarkersBeyond(size_t count, double timeout_s) {

@@ -55,8 +55,9 @@ class NodeletHarness {
   void reopenDense();
   /// Sets live parameters through dynamic_reconfigure's service; false when the call fails.
   bool reconfigure(const ParameterChange& change);
-  /// Static tf dense_frame -> sparse_frame (the seed).
-  void publishSeed(const Eigen::Isometry3d& T_dense_sparse, const std::string& dense_frame,
+  /// Static tf dense_frame -> sparse_frame (the seed). Returns once this process's own tf
+  /// listener holds it (false after 5 s): a listener in the nodelet gets it at about that time.
+  bool publishSeed(const Eigen::Isometry3d& T_dense_sparse, const std::string& dense_frame,
                    const std::string& sparse_frame);
 
   /// Waits until `condition` holds (checked under the harness lock, so it must not call the
@@ -66,11 +67,20 @@ class NodeletHarness {
   bool waitForNextTransform(double timeout_s);
   /// Waits until more than `count` ~transforms have been received.
   bool waitForTransformsBeyond(size_t count, double timeout_s);
+  /// Waits for the ~transform (markers) of the cloud stamped `stamp`: the result of that very
+  /// cloud, not of one still in flight when it was published.
+  bool waitForTransformStamped(const ros::Time& stamp, double timeout_s,
+                               geometry_msgs::TransformStamped* found);
+  bool waitForMarkersStamped(const ros::Time& stamp, double timeout_s,
+                             visualization_msgs::MarkerArray* found);
   bool waitForWarnContaining(const std::string& text, double timeout_s);
   /// Any level (INFO and up) from the nodelet's log on /rosout.
   bool waitForLogContaining(const std::string& text, double timeout_s);
   /// Waits until all publishers and subscribers are connected to the nodelet.
   bool waitForConnections(double timeout_s);
+  /// Waits only until this harness hears the nodelet's ~transform and diagnostics (when the
+  /// clouds come from elsewhere, e.g. a bag).
+  bool waitForOutputConnections(double timeout_s);
 
   /// Waits until more than `count` marker arrays (or poses) have been received.
   bool waitForMarkersBeyond(size_t count, double timeout_s);

@@ -33,8 +33,8 @@ TEST(NodeletLargeMap, IndexesOnlyTheSparseMapsReach) {
       room.T_target_source,
       Eigen::Translation3d(2.0 * map.spacing, 0.0, 0.0) * room.T_target_source};
   for (size_t i = 0; i < places.size(); ++i) {
-    harness.publishSeed(places[i] * randomPerturbation(3.0, 0.15, 11 + i), "dense_map",
-                        "sparse_map");
+    ASSERT_TRUE(harness.publishSeed(places[i] * randomPerturbation(3.0, 0.15, 11 + i), "dense_map",
+                                    "sparse_map"));
     ros::WallDuration(0.5).sleep();
     harness.publishSparse(room.source, "sparse_map");
     ASSERT_TRUE(harness.waitForNextTransform(60.0)) << "place " << i;

@@ -12,6 +12,7 @@
 #include "nodelet_harness.hpp"
 #include "pda_registration/core/error_metrics.hpp"
 #include "pda_registration/core/perturbation.hpp"
+#include "pda_registration/tools/statistics.hpp"
 #include "test_support/shared_data.hpp"
 
 namespace pda_registration {
@@ -30,11 +31,16 @@ TEST(NodeletSharedManager, OtherNodeletsKeepFlowingWhileAligning) {
   ros::NodeHandle node;
   ros::Publisher heartbeat = node.advertise<std_msgs::Header>("/heartbeat_relay/input", 100);
   std::mutex mutex;
+  // Each beat carries its send time (wall clock): its latency through the relay is the manager's
+  // delay, whatever hiccups the sending loop itself has on a loaded machine.
   std::vector<ros::WallTime> relayed;
+  std::vector<double> latencies_ms;
   ros::Subscriber relay = node.subscribe<std_msgs::Header>(
-      "/heartbeat_relay/output", 100, [&](const std_msgs::Header::ConstPtr&) {
+      "/heartbeat_relay/output", 100, [&](const std_msgs::Header::ConstPtr& m) {
+        const ros::WallTime now = ros::WallTime::now();
         std::lock_guard<std::mutex> lock(mutex);
-        relayed.push_back(ros::WallTime::now());
+        relayed.push_back(now);
+        latencies_ms.push_back((now.toSec() - m->stamp.toSec()) * 1000.0);
       });
   const ros::WallTime connect_deadline = ros::WallTime::now() + ros::WallDuration(20.0);
   while ((heartbeat.getNumSubscribers() == 0 || relay.getNumPublishers() == 0) &&
@@ -51,8 +57,8 @@ TEST(NodeletSharedManager, OtherNodeletsKeepFlowingWhileAligning) {
                                       .set("em_iterations", 20)
                                       .set("translation_epsilon", 1e-6)
                                       .set("rotation_epsilon", 1e-6)));
-  harness.publishSeed(data.T_target_source * randomPerturbation(3.0, 0.15, 2), "dense_map",
-                      "sparse_map");
+  ASSERT_TRUE(harness.publishSeed(data.T_target_source * randomPerturbation(3.0, 0.15, 2),
+                                  "dense_map", "sparse_map"));
   harness.publishDense(data.target, "dense_map");
   ros::WallDuration(2.0).sleep();
 
@@ -68,12 +74,14 @@ TEST(NodeletSharedManager, OtherNodeletsKeepFlowingWhileAligning) {
   {
     std::lock_guard<std::mutex> lock(mutex);
     relayed.clear();
+    latencies_ms.clear();
   }
   int sent = 0;
   const ros::WallTime end = ros::WallTime::now() + ros::WallDuration(10.0);
   while (ros::WallTime::now() < end) {
     std_msgs::Header beat;
     beat.seq = static_cast<uint32_t>(sent++);
+    beat.stamp.fromSec(ros::WallTime::now().toSec());
     heartbeat.publish(beat);
     ros::WallDuration(0.02).sleep();
   }
@@ -89,11 +97,15 @@ TEST(NodeletSharedManager, OtherNodeletsKeepFlowingWhileAligning) {
   // A stall of one alignment must stand out from the relay's 20 ms period.
   ASSERT_GT(alignment_ms, 150.0) << "alignments too short for this test to mean anything";
 
-  // ... and the relay never stalled for anywhere near one alignment.
+  // ... and the relay was not held up for anywhere near one alignment. A manager blocked by the
+  // alignments delays every beat sent during one (hundreds here), so the 95th percentile is
+  // far beyond half an alignment; one scheduling hiccup of a loaded machine delays a few beats.
   std::vector<ros::WallTime> times;
+  std::vector<double> latencies;
   {
     std::lock_guard<std::mutex> lock(mutex);
     times = relayed;
+    latencies = latencies_ms;
   }
   EXPECT_GE(times.size(), static_cast<size_t>(0.95 * sent))
       << "relayed " << times.size() << " of " << sent;
@@ -101,12 +113,13 @@ TEST(NodeletSharedManager, OtherNodeletsKeepFlowingWhileAligning) {
   for (size_t i = 1; i < times.size(); ++i) {
     longest_gap_ms = std::max(longest_gap_ms, (times[i] - times[i - 1]).toSec() * 1000.0);
   }
-  EXPECT_LT(longest_gap_ms, 0.5 * alignment_ms)
-      << "the relay stalled for " << longest_gap_ms << " ms during " << alignment_ms
-      << " ms alignments";
-  std::cout << "relay: " << times.size() << "/" << sent << " delivered, longest gap "
-            << longest_gap_ms << " ms; " << alignments << " alignments of ~" << alignment_ms
-            << " ms" << std::endl;
+  const double p95_ms = percentile(latencies, 0.95), max_ms = percentile(latencies, 1.0);
+  EXPECT_LT(p95_ms, 0.5 * alignment_ms) << "the relay was held up: p95 latency " << p95_ms
+                                        << " ms during " << alignment_ms << " ms alignments";
+  std::cout << "relay: " << times.size() << "/" << sent << " delivered, latency median "
+            << percentile(latencies, 0.5) << " ms, p95 " << p95_ms << " ms, max " << max_ms
+            << " ms, longest gap " << longest_gap_ms << " ms; " << alignments << " alignments of ~"
+            << alignment_ms << " ms" << std::endl;
 
   for (const geometry_msgs::TransformStamped& t : harness.transforms()) {
     EXPECT_LT(poseError(data.source, toEigen(t.transform), data.T_target_source).mean_distance,
