@@ -3,6 +3,7 @@
 #include <dynamic_reconfigure/Reconfigure.h>
 #include <tf2_eigen/tf2_eigen.h>
 
+#include <algorithm>
 #include <map>
 #include <tuple>
 
@@ -40,6 +41,7 @@ NodeletHarness::NodeletHarness(const std::string& nodelet_name)
     : nodelet_name_(nodelet_name),
       dense_(node_.advertise<sensor_msgs::PointCloud2>("dense_cloud", 1, true)),
       sparse_(node_.advertise<sensor_msgs::PointCloud2>("sparse_cloud", 5)),
+      tf_static_(node_.advertise<tf2_msgs::TFMessage>("/tf_static", 10, true)),
       tf_listener_(tf_buffer_) {
   const std::string prefix = "/" + nodelet_name + "/";
   transform_ = node_.subscribe<geometry_msgs::TransformStamped>(
@@ -113,8 +115,20 @@ bool NodeletHarness::publishSeed(const Eigen::Isometry3d& T, const std::string& 
   seed.header.stamp = ros::Time::now();
   seed.header.frame_id = dense_frame;
   seed.child_frame_id = sparse_frame;
-  static_broadcaster_.sendTransform(seed);
-  const ros::WallTime end = ros::WallTime::now() + ros::WallDuration(5.0);
+  // A latched message reaches a listener only once it has connected, and a busy machine can take
+  // over a second to connect the nodelet's listener to this new publisher.
+  const ros::WallTime end = ros::WallTime::now() + ros::WallDuration(10.0);
+  while (ros::ok() && tf_static_.getNumSubscribers() < 2 && ros::WallTime::now() < end) {
+    ros::WallDuration(0.02).sleep();
+  }
+  auto& transforms = static_transforms_.transforms;
+  transforms.erase(std::remove_if(transforms.begin(), transforms.end(),
+                                  [&](const geometry_msgs::TransformStamped& t) {
+                                    return t.child_frame_id == sparse_frame;
+                                  }),
+                   transforms.end());
+  transforms.push_back(seed);
+  tf_static_.publish(static_transforms_);
   while (ros::ok() && ros::WallTime::now() < end) {
     try {
       const Eigen::Isometry3d on_tf = lookup(dense_frame, sparse_frame, 0.0);

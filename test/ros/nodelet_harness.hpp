@@ -10,8 +10,8 @@
 #include <ros/ros.h>
 #include <rosgraph_msgs/Log.h>
 #include <sensor_msgs/PointCloud2.h>
+#include <tf2_msgs/TFMessage.h>
 #include <tf2_ros/buffer.h>
-#include <tf2_ros/static_transform_broadcaster.h>
 #include <tf2_ros/transform_listener.h>
 #include <visualization_msgs/MarkerArray.h>
 
@@ -55,8 +55,9 @@ class NodeletHarness {
   void reopenDense();
   /// Sets live parameters through dynamic_reconfigure's service; false when the call fails.
   bool reconfigure(const ParameterChange& change);
-  /// Static tf dense_frame -> sparse_frame (the seed). Returns once this process's own tf
-  /// listener holds it (false after 5 s): a listener in the nodelet gets it at about that time.
+  /// Static tf dense_frame -> sparse_frame (the seed). Waits until a listener besides this
+  /// process's own (the nodelet's) is connected to /tf_static, publishes, and returns once this
+  /// process's listener holds the seed (false after 10 s): the nodelet's gets it about then.
   bool publishSeed(const Eigen::Isometry3d& T_dense_sparse, const std::string& dense_frame,
                    const std::string& sparse_frame);
 
@@ -114,7 +115,10 @@ class NodeletHarness {
   std::string nodelet_name_;
   ros::Publisher dense_, sparse_;
   ros::Subscriber transform_, pose_, markers_, rosout_, diagnostics_;
-  tf2_ros::StaticTransformBroadcaster static_broadcaster_;
+  // Like tf2_ros::StaticTransformBroadcaster (one latched message holding every static
+  // transform), but with the publisher at hand, to wait until the nodelet's listener connects.
+  ros::Publisher tf_static_;
+  tf2_msgs::TFMessage static_transforms_;
   tf2_ros::Buffer tf_buffer_;
   tf2_ros::TransformListener tf_listener_;
   std::mutex mutex_;
