@@ -31,7 +31,6 @@ TEST(DemoShort, CorrectedErrorBeatsTheSeedByAWideMargin) {
   while (!std::filesystem::exists(path) && ros::WallTime::now() < deadline) {
     ros::WallDuration(0.2).sleep();
   }
-  ros::WallDuration(0.5).sleep();  // written in one go, but let the writer close it
   std::ifstream file(path);
   ASSERT_TRUE(file.good()) << "no " << path;
   const std::string json((std::istreambuf_iterator<char>(file)), std::istreambuf_iterator<char>());
