@@ -14,6 +14,7 @@ add_library(pda_registration_ros
   src/ros/map_alignment_nodelet.cpp
   src/ros/node_settings.cpp
   src/ros/seed_lookup.cpp
+  src/ros/tf_edge.cpp
 )
 target_compile_options(pda_registration_ros PRIVATE ${PDA_WARNINGS})
 target_link_libraries(pda_registration_ros pda_registration_conversions ${catkin_LIBRARIES})

@@ -313,14 +313,20 @@ void MapAlignmentNodelet::alignSparseCloud(const SparseJob& job) {
   output.max_markers = live.max_markers;
   output.marker_line_width = settings_.marker_line_width;
   publisher_->publish(output);
-  {
-    std::lock_guard<std::mutex> lock(estimate_mutex_);
-    have_estimate_ = true;
-    estimate_ = output.T_dense_sparse;
-    estimate_dense_frame_ = dense_frame_;
-    estimate_sparse_frame_ = sparse_frame;
+  if (settings_.publish_tf) {
+    TfEdge edge;
+    std::string error;
+    if (expressOnTfEdge(*tf_buffer_, output.T_dense_sparse, dense_frame_, sparse_frame,
+                        settings_.tf_parent_frame, settings_.tf_child_frame, cloud.header.stamp,
+                        ros::Duration(settings_.tf_timeout), &edge, &error)) {
+      broadcastEdge(&edge, cloud.header.stamp);
+    } else {
+      reportProblem(
+          "tf edge",
+          "cannot express the estimate as " + edge.parent + " -> " + edge.child + ": " + error,
+          false);
+    }
   }
-  if (settings_.publish_tf) broadcastEstimate(output.T_dense_sparse, cloud.header.stamp, false);
   const double latency_ms = (ros::WallTime::now() - job.received).toSec() * 1000.0;
   {
     std::lock_guard<std::mutex> lock(status_mutex_);
@@ -330,14 +336,20 @@ void MapAlignmentNodelet::alignSparseCloud(const SparseJob& job) {
                 result.time_ms, result.runs, result.sigma, result.inlier_fraction, latency_ms);
 }
 
-void MapAlignmentNodelet::broadcastEstimate(const Eigen::Isometry3d& T_dense_sparse,
-                                            const ros::Time& requested_stamp, bool periodic) {
-  std::string dense, sparse;
+void MapAlignmentNodelet::broadcastEdge(const TfEdge* fresh, const ros::Time& requested_stamp) {
+  TfEdge edge;
   ros::Time stamp = requested_stamp;
   {
-    std::lock_guard<std::mutex> lock(estimate_mutex_);
-    dense = estimate_dense_frame_;
-    sparse = estimate_sparse_frame_;
+    // The edge and its stamp are taken together, so a re-broadcast never sends an older edge at
+    // a newer stamp than a fresh one.
+    std::lock_guard<std::mutex> lock(edge_mutex_);
+    if (fresh) {
+      edge_ = *fresh;
+      have_edge_ = true;
+    } else if (!have_edge_) {
+      return;
+    }
+    edge = edge_;
     // tf listeners drop data older than what they hold (TF_OLD_DATA) or at a stamp they already
     // have (TF_REPEATED_DATA), each with a warning: stamps on our edge only move forward. A late
     // cloud's estimate goes out stamped now; a re-broadcast while simulated time stands still
@@ -345,48 +357,21 @@ void MapAlignmentNodelet::broadcastEstimate(const Eigen::Isometry3d& T_dense_spa
     const ros::Time now = ros::Time::now();
     if (now + ros::Duration(1.0) < last_tf_stamp_) last_tf_stamp_ = ros::Time();
     if (stamp <= last_tf_stamp_) {
-      if (periodic) return;
+      if (!fresh) return;
       stamp = std::max(now, last_tf_stamp_ + ros::Duration(0, 1000));
     }
     last_tf_stamp_ = stamp;
   }
-  const std::string parent = settings_.tf_parent_frame.empty() ? dense : settings_.tf_parent_frame;
-  const std::string default_child = sparse + "_aligned";
-  const std::string child =
-      settings_.tf_child_frame.empty() ? default_child : settings_.tf_child_frame;
-  // parent <- child = (parent <- dense) (dense <- sparse) (sparse <- child): the corrected pose
-  // re-expressed on the configured edge, e.g. map -> odom while odometry owns odom -> sensor.
-  Eigen::Isometry3d T = T_dense_sparse;
-  try {
-    if (parent != dense) {
-      T = tf2::transformToEigen(tf_buffer_->lookupTransform(parent, dense, ros::Time(0))) * T;
-    }
-    if (child != sparse && child != default_child) {
-      T = T * tf2::transformToEigen(tf_buffer_->lookupTransform(sparse, child, ros::Time(0)));
-    }
-  } catch (const tf2::TransformException& error) {
-    reportProblem("tf edge",
-                  std::string("cannot express the estimate as ") + parent + " -> " + child + ": " +
-                      error.what(),
-                  false);
-    return;
-  }
-  geometry_msgs::TransformStamped transform = tf2::eigenToTransform(T);
+  geometry_msgs::TransformStamped transform = tf2::eigenToTransform(edge.T_parent_child);
   transform.header.stamp = stamp;
-  transform.header.frame_id = parent;
-  transform.child_frame_id = child;
+  transform.header.frame_id = edge.parent;
+  transform.child_frame_id = edge.child;
   publisher_->broadcast(transform);
 }
 
 void MapAlignmentNodelet::republishTf(const ros::TimerEvent&) {
-  Eigen::Isometry3d estimate;
-  {
-    std::lock_guard<std::mutex> lock(estimate_mutex_);
-    if (!have_estimate_) return;
-    estimate = estimate_;
-  }
   const ros::Time now = ros::Time::now();
-  if (!now.isZero()) broadcastEstimate(estimate, now, true);
+  if (!now.isZero()) broadcastEdge(nullptr, now);
 }
 
 void MapAlignmentNodelet::reportProblem(const std::string& kind, const std::string& problem,

@@ -18,25 +18,36 @@ const char* toString(SeedSource source) {
   return "unknown";
 }
 
+bool lookupAtStampOrLatest(const tf2_ros::Buffer& buffer, const std::string& target_frame,
+                           const std::string& source_frame, const ros::Time& stamp,
+                           const ros::Duration& timeout, Eigen::Isometry3d* T, bool* at_stamp,
+                           std::string* error) {
+  try {
+    *T = tf2::transformToEigen(buffer.lookupTransform(target_frame, source_frame, stamp, timeout));
+    *at_stamp = true;
+    return true;
+  } catch (const tf2::TransformException& e) {
+    *error = e.what();
+  }
+  try {
+    *T = tf2::transformToEigen(buffer.lookupTransform(target_frame, source_frame, ros::Time(0)));
+    *at_stamp = false;
+    return true;
+  } catch (const tf2::TransformException& e) {
+    *error = e.what();
+  }
+  return false;
+}
+
 Seed lookupSeed(const tf2_ros::Buffer& buffer, const std::string& dense_frame,
                 const std::string& sparse_frame, const ros::Time& stamp,
                 const ros::Duration& timeout, const Eigen::Isometry3d* initial_transform) {
   Seed seed;
-  try {
-    seed.T_dense_sparse =
-        tf2::transformToEigen(buffer.lookupTransform(dense_frame, sparse_frame, stamp, timeout));
-    seed.source = SeedSource::kTfAtStamp;
+  bool at_stamp = false;
+  if (lookupAtStampOrLatest(buffer, dense_frame, sparse_frame, stamp, timeout, &seed.T_dense_sparse,
+                            &at_stamp, &seed.detail)) {
+    seed.source = at_stamp ? SeedSource::kTfAtStamp : SeedSource::kTfLatest;
     return seed;
-  } catch (const tf2::TransformException& at_stamp) {
-    seed.detail = at_stamp.what();
-  }
-  try {
-    seed.T_dense_sparse =
-        tf2::transformToEigen(buffer.lookupTransform(dense_frame, sparse_frame, ros::Time(0)));
-    seed.source = SeedSource::kTfLatest;
-    return seed;
-  } catch (const tf2::TransformException& latest) {
-    seed.detail = latest.what();
   }
   if (initial_transform) {
     seed.T_dense_sparse = *initial_transform;

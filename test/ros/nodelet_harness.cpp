@@ -325,9 +325,9 @@ std::string NodeletHarness::logText() {
 }
 
 Eigen::Isometry3d NodeletHarness::lookup(const std::string& parent, const std::string& child,
-                                         double timeout_s) {
+                                         double timeout_s, const ros::Time& stamp) {
   return tf2::transformToEigen(
-      tf_buffer_.lookupTransform(parent, child, ros::Time(0), ros::Duration(timeout_s)));
+      tf_buffer_.lookupTransform(parent, child, stamp, ros::Duration(timeout_s)));
 }
 
 Eigen::Isometry3d toEigen(const geometry_msgs::Transform& t) {

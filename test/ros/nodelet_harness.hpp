@@ -107,8 +107,10 @@ class NodeletHarness {
   bool waitForAcceptedToMatchTransforms(double timeout_s, std::string* detail);
   /// Everything logged on /rosout so far, one line per message (for failure messages).
   std::string logText();
-  /// tf's transform between two frames right now (throws tf2::TransformException).
-  Eigen::Isometry3d lookup(const std::string& parent, const std::string& child, double timeout_s);
+  /// tf's transform between two frames, the latest or at `stamp` (throws
+  /// tf2::TransformException).
+  Eigen::Isometry3d lookup(const std::string& parent, const std::string& child, double timeout_s,
+                           const ros::Time& stamp = ros::Time(0));
 
  private:
   ros::NodeHandle node_;

@@ -22,6 +22,7 @@
 #include "pda_registration/ros/live_parameters.hpp"
 #include "pda_registration/ros/node_settings.hpp"
 #include "pda_registration/ros/seed_lookup.hpp"
+#include "pda_registration/ros/tf_edge.hpp"
 
 namespace pda_registration {
 
@@ -63,9 +64,9 @@ class MapAlignmentNodelet : public nodelet::Nodelet {
   void updateDenseCloud(const sensor_msgs::PointCloud2ConstPtr& cloud);
   void alignSparseCloud(const SparseJob& job);
   void republishTf(const ros::TimerEvent& event);
-  /// Sends the estimate on tf; `periodic` for the timer's re-broadcast of an unchanged one.
-  void broadcastEstimate(const Eigen::Isometry3d& T_dense_sparse, const ros::Time& stamp,
-                         bool periodic);
+  /// Sends `fresh` on tf and keeps it for re-broadcasts; null: the timer's re-broadcast of the
+  /// kept edge.
+  void broadcastEdge(const TfEdge* fresh, const ros::Time& stamp);
   void diagnose(diagnostic_updater::DiagnosticStatusWrapper& status);
   /// Records a problem for diagnostics and logs a WARN, throttled per `kind`.
   void reportProblem(const std::string& kind, const std::string& problem, bool input_error);
@@ -99,11 +100,10 @@ class MapAlignmentNodelet : public nodelet::Nodelet {
   bool have_dense_ = false;
   uint64_t dense_fingerprint_ = 0;  // of the map in use: an unchanged re-publication is skipped
 
-  // The last accepted estimate, re-broadcast on tf; guarded by estimate_mutex_.
-  std::mutex estimate_mutex_;
-  bool have_estimate_ = false;
-  Eigen::Isometry3d estimate_ = Eigen::Isometry3d::Identity();
-  std::string estimate_dense_frame_, estimate_sparse_frame_;
+  // The last accepted estimate as our tf edge, re-broadcast unchanged; guarded by edge_mutex_.
+  std::mutex edge_mutex_;
+  bool have_edge_ = false;
+  TfEdge edge_;
   ros::Time last_tf_stamp_;  // newest stamp broadcast on our edge (tf drops older data loudly)
 
   std::mutex status_mutex_;

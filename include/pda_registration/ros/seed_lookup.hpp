@@ -19,6 +19,13 @@ struct Seed {
   std::string detail;  ///< tf's error when it could not help
 };
 
+/// target <- source from tf at `stamp` (waiting up to `timeout`), else the latest tf has;
+/// *at_stamp says which. False, with tf's error in *error, when tf has neither.
+bool lookupAtStampOrLatest(const tf2_ros::Buffer& buffer, const std::string& target_frame,
+                           const std::string& source_frame, const ros::Time& stamp,
+                           const ros::Duration& timeout, Eigen::Isometry3d* T, bool* at_stamp,
+                           std::string* error);
+
 Seed lookupSeed(const tf2_ros::Buffer& buffer, const std::string& dense_frame,
                 const std::string& sparse_frame, const ros::Time& stamp,
                 const ros::Duration& timeout, const Eigen::Isometry3d* initial_transform);
