@@ -92,10 +92,14 @@ void MapAlignmentNodelet::reconfigure(PdaRegistrationConfig& config, uint32_t) {
   const std::string problem = validateParameters(live.registration);
   if (!problem.empty()) {
     // The .cfg limits make this rare (e.g. closed_form with surface_anisotropy > 1): keep the
-    // previous parameters and say why.
-    NODELET_WARN("reconfigure refused: %s", problem.c_str());
+    // previous parameters, say why, and hand them back, so that what dynamic_reconfigure
+    // publishes (rqt_reconfigure, dynparam) is what runs.
+    NODELET_WARN("reconfigure refused: %s; keeping the previous parameters", problem.c_str());
+    if (have_accepted_config_) config = accepted_config_;
     return;
   }
+  accepted_config_ = config;
+  have_accepted_config_ = true;
   std::lock_guard<std::mutex> lock(live_mutex_);
   live_ = live;
 }
@@ -187,7 +191,17 @@ void MapAlignmentNodelet::updateDenseCloud(const sensor_msgs::PointCloud2ConstPt
       std::lock_guard<std::mutex> lock(live_mutex_);
       registration_.setParameters(live_.registration);
     }
-    registration_.setTarget(std::move(converted.points));
+    if (!registration_.setTarget(std::move(converted.points))) {
+      // The previous map is gone with it: forget it, so a re-publication is indexed afresh
+      // rather than skipped as unchanged.
+      have_dense_ = false;
+      dense_fingerprint_ = 0;
+      reportProblem("dense index",
+                    "dense cloud " + describe(*cloud, dense_subscriber_.getTopic()) +
+                        " could not be indexed; no map until the next one",
+                    true);
+      return;
+    }
   } else {
     dense_points_ = std::move(converted.points);
   }

@@ -229,6 +229,7 @@ TEST_F(NodeletFaults, C_ParameterStormWhileAligning) {
   // At least 30 changes, and on until 10 alignments went out during them (however slow the
   // machine), within a minute.
   const ros::WallTime give_up = ros::WallTime::now() + ros::WallDuration(60.0);
+  std::string last_solver;
   for (int i = 0;
        i < 30 || (harness_->transformCount() - before < 10 && ros::WallTime::now() < give_up);
        ++i) {
@@ -242,12 +243,20 @@ TEST_F(NodeletFaults, C_ParameterStormWhileAligning) {
                             .set("normal_voxel_size", i % 5 == 0 ? 0.2 : 0.15)
                             .set("solver", solvers[i % 2]);
     EXPECT_TRUE(harness_->reconfigure(change)) << "reconfigure call " << i;
+    last_solver = solvers[i % 2];
     ros::WallDuration(0.1).sleep();
   }
-  // An impossible combination is refused and the previous parameters stay.
-  EXPECT_TRUE(
-      harness_->reconfigure(testing_support::ParameterChange().set("solver", "closed_form")));
+  // An impossible combination is refused and the previous parameters stay: also in what the
+  // node reports back (rqt_reconfigure and dynparam show that), not only in what it runs.
+  dynamic_reconfigure::Config applied;
+  EXPECT_TRUE(harness_->reconfigure(testing_support::ParameterChange().set("solver", "closed_form"),
+                                    &applied));
   EXPECT_TRUE(harness_->waitForWarnContaining("reconfigure refused", 5.0));
+  std::string reported_solver;
+  for (const dynamic_reconfigure::StrParameter& p : applied.strs) {
+    if (p.name == "solver") reported_solver = p.value;
+  }
+  EXPECT_EQ(reported_solver, last_solver) << "the refused value is reported as in force";
   publishing = false;
   publisher.join();
   const size_t during = harness_->transformCount() - before;

@@ -85,10 +85,13 @@ void NodeletHarness::reopenDense() {
   dense_ = node_.advertise<sensor_msgs::PointCloud2>("dense_cloud", 1, true);
 }
 
-bool NodeletHarness::reconfigure(const ParameterChange& change) {
+bool NodeletHarness::reconfigure(const ParameterChange& change,
+                                 dynamic_reconfigure::Config* applied) {
   dynamic_reconfigure::Reconfigure call;
   call.request.config = change.config();
-  return ros::service::call("/" + nodelet_name_ + "/set_parameters", call);
+  if (!ros::service::call("/" + nodelet_name_ + "/set_parameters", call)) return false;
+  if (applied) *applied = call.response.config;
+  return true;
 }
 
 void NodeletHarness::publishDense(const PointList& points, const std::string& frame) {

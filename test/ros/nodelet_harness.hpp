@@ -54,7 +54,8 @@ class NodeletHarness {
   void closeDense();
   void reopenDense();
   /// Sets live parameters through dynamic_reconfigure's service; false when the call fails.
-  bool reconfigure(const ParameterChange& change);
+  /// `applied`, when given, receives the configuration the node reports back as in force.
+  bool reconfigure(const ParameterChange& change, dynamic_reconfigure::Config* applied = nullptr);
   /// Static tf dense_frame -> sparse_frame (the seed). Waits until a listener besides this
   /// process's own (the nodelet's) is connected to /tf_static, publishes, and returns once this
   /// process's listener holds the seed (false after 10 s): the nodelet's gets it about then.

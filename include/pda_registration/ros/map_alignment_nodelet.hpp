@@ -79,6 +79,10 @@ class MapAlignmentNodelet : public nodelet::Nodelet {
 
   std::mutex live_mutex_;
   LiveParameters live_;
+  // The last configuration accepted, handed back when a change is refused (only touched in the
+  // reconfigure callback, which dynamic_reconfigure serialises).
+  PdaRegistrationConfig accepted_config_;
+  bool have_accepted_config_ = false;
   ros::Time last_sparse_accepted_;
 
   std::unique_ptr<tf2_ros::Buffer> tf_buffer_;
