@@ -58,9 +58,10 @@ TEST(NodeletCorrectionEdge, HoldsTheCorrectionWhileOdometryMoves) {
     }
   });
   harness.publishDense(data.target, "dense_map");
-  ros::WallDuration(1.5).sleep();  // map indexed, odometry buffered
+  ASSERT_TRUE(harness.waitForLogContaining("dense map from", 30.0)) << "the map never arrived";
 
-  // The cloud was taken 0.2 s ago (odometry on both sides of its stamp is buffered).
+  // The cloud was taken 0.2 s ago, with odometry buffered on both sides of its stamp.
+  while ((ros::Time::now() - start).toSec() < 0.5) ros::WallDuration(0.02).sleep();
   const ros::Time taken = ros::Time::now() - ros::Duration(0.2);
   std_msgs::Header header;
   header.frame_id = "sparse_map";
