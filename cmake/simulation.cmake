@@ -7,6 +7,7 @@ add_library(pda_registration_simulation
   src/simulation/map_bag_writer.cpp
   src/simulation/map_simulation.cpp
   src/simulation/office_scene.cpp
+  src/simulation/outdoor_scene.cpp
   src/simulation/scene.cpp
   src/simulation/sensor_paths.cpp
   src/simulation/velodyne_simulator.cpp

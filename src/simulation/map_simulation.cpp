@@ -12,6 +12,9 @@ namespace {
 constexpr double kDegrees = M_PI / 180.0;
 constexpr uint64_t kKinectStream = 1;
 constexpr uint64_t kVelodyneStream = 2;
+constexpr uint64_t kDenseLidarStream = 3;
+constexpr double kOutdoorDenseLidarHeight = 1.9;   // [m] a mapping vehicle's roof
+constexpr double kOutdoorSparseLidarHeight = 1.7;  // [m] a car's roof
 
 // splitmix64's finaliser: nearby inputs give unrelated outputs.
 uint64_t mix(uint64_t value) {
@@ -20,7 +23,70 @@ uint64_t mix(uint64_t value) {
   value = (value ^ (value >> 27)) * 0x94D049BB133111EBULL;
   return value ^ (value >> 31);
 }
+
+VelodyneParameters denseLidar(const MapSimulationOptions& options) {
+  VelodyneParameters parameters =
+      options.dense_sensor == DenseSensor::kLidar64 ? lidar64Parameters() : options.velodyne;
+  parameters.noise = options.velodyne.noise;
+  return parameters;
+}
+
+// The same sensor cut to its rings within +-15 degrees, as the shared factory_p64 case is made.
+VelodyneParameters sameSensorSparseLidar(const MapSimulationOptions& options) {
+  const VelodyneParameters dense = denseLidar(options);
+  if (options.dense_sensor == DenseSensor::kLidar64) return ringSubset(dense, 16, 4, 11);
+  return ringSubset(dense, 0, 2, 8);
+}
+
+// Where the sparse lidar stops (scene frame).
+std::vector<Eigen::Isometry3d> sparseLidarPoses(const SimulatedMaps& maps,
+                                                const MapSimulationOptions& options,
+                                                const OutdoorScene& outdoor) {
+  if (options.scene == SceneKind::kOffice) {
+    return velodynePoses(maps.office, options.velodyne_revolutions);
+  }
+  std::vector<Eigen::Isometry3d> poses;
+  for (int i = 0; i < options.velodyne_revolutions; ++i) {
+    const Eigen::Vector2d& stop = outdoor.road_stops[i % outdoor.road_stops.size()];
+    poses.push_back(sensorPose(Eigen::Vector3d(stop.x() + 2.5 * (i / outdoor.road_stops.size()),
+                                               stop.y() - 1.5, kOutdoorSparseLidarHeight),
+                               0.0, 0.0));
+  }
+  return poses;
+}
+
+// Where the dense lidar stops when it is not at the sparse scan's pose: between the sparse stops
+// (office: on the walkway, shifted by half a stop; outdoor: on the other lane).
+std::vector<Eigen::Isometry3d> denseLidarPoses(const SimulatedMaps& maps,
+                                               const MapSimulationOptions& options,
+                                               const OutdoorScene& outdoor) {
+  std::vector<Eigen::Isometry3d> poses;
+  for (int i = 0; i < options.dense_revolutions; ++i) {
+    if (options.scene == SceneKind::kOffice) {
+      const LoopPoint point = walkwayPoint(maps.office, (i + 0.8) / options.dense_revolutions);
+      poses.push_back(sensorPose(Eigen::Vector3d(point.position.x(), point.position.y(), 1.2),
+                                 point.heading + 0.3, 0.0));
+    } else {
+      const double x = -25.0 + 50.0 * (i + 0.5) / options.dense_revolutions;
+      poses.push_back(sensorPose(Eigen::Vector3d(x, outdoor.road_stops[0].y() + 1.5,
+                                                 kOutdoorDenseLidarHeight),
+                                 0.1 * i, 0.0));
+    }
+  }
+  return poses;
+}
+
 }  // namespace
+
+std::string validateSimulationOptions(const MapSimulationOptions& options) {
+  if (options.scene == SceneKind::kOutdoor && options.dense_sensor == DenseSensor::kKinect)
+    return "a Kinect cannot map an outdoor scene (0.5-4.5 m range): use a lidar dense sensor";
+  if (options.same_pose && options.dense_sensor == DenseSensor::kKinect)
+    return "same_pose needs a lidar dense sensor (vlp16 or lidar64)";
+  if (options.dense_revolutions < 1) return "dense_revolutions must be >= 1";
+  if (options.velodyne_revolutions < 1) return "velodyne_revolutions must be >= 1";
+  return "";
+}
 
 Eigen::Isometry3d transformFromYawPitchRoll(double yaw_deg, double pitch_deg, double roll_deg,
                                             const Eigen::Vector3d& translation) {
@@ -39,30 +105,55 @@ uint64_t streamSeed(uint64_t seed, uint64_t stream, uint64_t index) {
 
 SimulatedMaps simulateMaps(const MapSimulationOptions& options) {
   SimulatedMaps maps;
-  maps.office = makeOfficeScene(options.seed);
+  OutdoorScene outdoor;
+  Eigen::Vector2d distortion_centre = Eigen::Vector2d::Zero();
+  if (options.scene == SceneKind::kOffice) {
+    maps.office = makeOfficeScene(options.seed);
+    maps.scene = maps.office.scene;
+    distortion_centre = maps.office.office.center();
+  } else {
+    outdoor = makeOutdoorScene(options.seed);
+    maps.scene = outdoor.scene;
+  }
   maps.T_target_source = transformFromYawPitchRoll(options.yaw_deg, options.pitch_deg,
                                                    options.roll_deg, options.translation);
 
-  maps.kinect_poses = kinectTrajectory(maps.office, options.kinect_frames);
+  std::vector<Eigen::Isometry3d> lidar_poses = sparseLidarPoses(maps, options, outdoor);
+  if (options.same_pose) lidar_poses.resize(1);  // one scan, re-observed by the same sensor
+  const VelodyneParameters sparse_lidar =
+      options.same_pose ? sameSensorSparseLidar(options) : options.velodyne;
+
   PointList dense;
-  for (size_t i = 0; i < maps.kinect_poses.size(); ++i) {
-    const PointList frame =
-        simulateKinectFrame(maps.office.scene, maps.kinect_poses[i], options.kinect,
-                            streamSeed(options.seed, kKinectStream, i));
-    dense.insert(dense.end(), frame.begin(), frame.end());
+  if (options.dense_sensor == DenseSensor::kKinect) {
+    maps.kinect_poses = kinectTrajectory(maps.office, options.kinect_frames);
+    for (size_t i = 0; i < maps.kinect_poses.size(); ++i) {
+      const PointList frame =
+          simulateKinectFrame(maps.scene, maps.kinect_poses[i], options.kinect,
+                              streamSeed(options.seed, kKinectStream, i));
+      dense.insert(dense.end(), frame.begin(), frame.end());
+    }
+  } else {
+    maps.dense_lidar_poses =
+        options.same_pose ? std::vector<Eigen::Isometry3d>(options.dense_revolutions,
+                                                           lidar_poses.front())
+                          : denseLidarPoses(maps, options, outdoor);
+    const VelodyneParameters dense_lidar = denseLidar(options);
+    for (size_t i = 0; i < maps.dense_lidar_poses.size(); ++i) {
+      const PointList revolution =
+          simulateVelodyneRevolution(maps.scene, maps.dense_lidar_poses[i], dense_lidar,
+                                     streamSeed(options.seed, kDenseLidarStream, i));
+      dense.insert(dense.end(), revolution.begin(), revolution.end());
+    }
   }
   maps.dense_raw_points = dense.size();
   maps.dense = voxelDownsample(dense, options.dense_voxel_size);
-  applyDistortion(DriftDistortion{maps.office.office.center(), options.distortion}, &maps.dense);
+  applyDistortion(DriftDistortion{distortion_centre, options.distortion}, &maps.dense);
 
   // The lidar sees the scene (= dense frame); its map frame is where T_target_source says.
   const Eigen::Isometry3d T_source_target = maps.T_target_source.inverse();
-  const std::vector<Eigen::Isometry3d> lidar_poses =
-      velodynePoses(maps.office, options.velodyne_revolutions);
   for (size_t i = 0; i < lidar_poses.size(); ++i) {
-    const PointList revolution =
-        simulateVelodyneRevolution(maps.office.scene, lidar_poses[i], options.velodyne,
-                                   streamSeed(options.seed, kVelodyneStream, i));
+    const PointList revolution = simulateVelodyneRevolution(
+        maps.scene, lidar_poses[i], sparse_lidar, streamSeed(options.seed, kVelodyneStream, i));
     for (const Point& p : revolution) maps.sparse.push_back(T_source_target * p);
     maps.velodyne_poses.push_back(T_source_target * lidar_poses[i]);
   }

@@ -13,6 +13,26 @@ constexpr double kDegrees = M_PI / 180.0;
 constexpr double kNoiseMarginSigmas = 6.0;
 }  // namespace
 
+VelodyneParameters lidar64Parameters() {
+  VelodyneParameters parameters;
+  parameters.rings = 64;
+  parameters.lowest_elevation_deg = -25.0;
+  parameters.ring_spacing_deg = 40.0 / 63.0;
+  parameters.max_range = 120.0;
+  parameters.range_noise = 0.02;
+  return parameters;
+}
+
+VelodyneParameters ringSubset(const VelodyneParameters& parameters, int first, int stride,
+                              int count) {
+  VelodyneParameters subset = parameters;
+  subset.rings = count;
+  subset.lowest_elevation_deg =
+      parameters.lowest_elevation_deg + first * parameters.ring_spacing_deg;
+  subset.ring_spacing_deg = stride * parameters.ring_spacing_deg;
+  return subset;
+}
+
 int velodyneColumns(const VelodyneParameters& parameters) {
   return static_cast<int>(std::lround(360.0 / parameters.azimuth_step_deg));
 }

@@ -30,10 +30,20 @@ const char* kUsage =
     "  --bag FILE                write a rosbag: /dense_map, /sparse_map, /tf (perturbed seed\n"
     "                            dense_map -> sparse_map), /ground_truth\n"
     "  --seed N                  scene layout and sensor noise (1)\n"
+    "  --scene office|outdoor    office (default), or a ground-dominated car park with a few\n"
+    "                            buildings, parked cars, poles and trees (ranges to 80 m+)\n"
+    "  --dense-sensor S          kinect (office default), vlp16 or lidar64 (outdoor default):\n"
+    "                            what builds the dense map\n"
+    "  --dense-revolutions N     lidar dense sensors: revolutions in the dense map (4)\n"
+    "  --same-pose               lidar dense sensors: the dense revolutions are taken at the\n"
+    "                            sparse scan's own pose by the same sensor (same azimuth grid),\n"
+    "                            and the sparse map is one more revolution cut to the rings\n"
+    "                            within +-15 deg: the same-sensor lattice case\n"
     "  --kinect-frames N         depth frames around the walkway (24)\n"
     "  --velodyne-revolutions N  lidar stops around the walkway, one revolution each (3)\n"
     "  --dense-voxel M           voxel grid of the dense map in metres, 0 keeps every point "
-    "(0.03)\n"
+    "(0.03\n"
+    "                            for the Kinect, 0 for lidar dense sensors)\n"
     "  --yaw-deg D               ground-truth yaw (25)\n"
     "  --pitch-deg D             ground-truth pitch (0)\n"
     "  --roll-deg D              ground-truth roll (0)\n"
@@ -53,10 +63,11 @@ int usageError(const std::string& message) { return reportError("pda_simulate", 
 }  // namespace
 
 int main(int argc, char** argv) {
-  CommandLine cl({"output", "bag", "seed", "kinect-frames", "velodyne-revolutions", "dense-voxel",
+  CommandLine cl({"output", "bag", "seed", "scene", "dense-sensor", "dense-revolutions",
+                  "kinect-frames", "velodyne-revolutions", "dense-voxel",
                   "yaw-deg", "pitch-deg", "roll-deg", "translation", "distortion", "seed-error-deg",
                   "seed-error-m", "dense-messages", "sparse-messages", "tf-rate"},
-                 {"no-noise", "help"});
+                 {"no-noise", "same-pose", "help"});
   if (!cl.parse(argc, argv)) return usageError(cl.error());
   if (cl.has("help")) {
     std::cout << kUsage;
@@ -85,6 +96,29 @@ int main(int argc, char** argv) {
                         cl.integer("sparse-messages", &bag_options.sparse_messages, 1, 100) &&
                         cl.number("tf-rate", &bag_options.tf_rate, 0.1, 1000.0);
   if (!flags_ok) return usageError(cl.error());
+  const std::string scene = cl.text("scene", "office");
+  if (scene != "office" && scene != "outdoor")
+    return usageError("--scene: expected office or outdoor (got '" + scene + "')");
+  options.scene = scene == "office" ? SceneKind::kOffice : SceneKind::kOutdoor;
+  const std::string dense_sensor =
+      cl.text("dense-sensor", options.scene == SceneKind::kOffice ? "kinect" : "lidar64");
+  if (dense_sensor == "kinect")
+    options.dense_sensor = DenseSensor::kKinect;
+  else if (dense_sensor == "vlp16")
+    options.dense_sensor = DenseSensor::kVlp16;
+  else if (dense_sensor == "lidar64")
+    options.dense_sensor = DenseSensor::kLidar64;
+  else
+    return usageError("--dense-sensor: expected kinect, vlp16 or lidar64 (got '" + dense_sensor +
+                      "')");
+  if (!cl.integer("dense-revolutions", &options.dense_revolutions, 1, 100))
+    return usageError(cl.error());
+  options.same_pose = cl.has("same-pose");
+  // A lidar map is kept whole: a voxel grid would average away its scan lattice.
+  if (!cl.has("dense-voxel") && options.dense_sensor != DenseSensor::kKinect)
+    options.dense_voxel_size = 0.0;
+  const std::string invalid = validateSimulationOptions(options);
+  if (!invalid.empty()) return usageError(invalid);
   if (translation.size() != 3)
     return usageError("--translation: expected X,Y,Z (e.g. 1.5,-0.8,0.1)");
   options.seed = static_cast<uint64_t>(seed);
@@ -144,8 +178,9 @@ int main(int argc, char** argv) {
   }
 
   JsonLine json;
-  json.add("seed", seed).add("scene_primitives", maps.office.scene.primitiveCount());
-  json.add("kinect_frames", options.kinect_frames).add("dense_raw_points", maps.dense_raw_points);
+  json.add("seed", seed).add("scene_primitives", maps.scene.primitiveCount());
+  json.add("scene", scene).add("dense_sensor", dense_sensor).add("same_pose", options.same_pose);
+  json.add("dense_raw_points", maps.dense_raw_points);
   json.add("dense_points", maps.dense.size());
   json.add("velodyne_revolutions", options.velodyne_revolutions);
   json.add("sparse_points", maps.sparse.size()).add("distortion", options.distortion);

@@ -8,18 +8,43 @@
 
 #include <Eigen/Geometry>
 #include <cstdint>
+#include <string>
 #include <vector>
 
 #include "pda_registration/core/point_list.hpp"
 #include "pda_registration/simulation/kinect_simulator.hpp"
 #include "pda_registration/simulation/office_scene.hpp"
+#include "pda_registration/simulation/outdoor_scene.hpp"
 #include "pda_registration/simulation/velodyne_simulator.hpp"
 
 namespace pda_registration {
 namespace simulation {
 
+/// What is scanned.
+enum class SceneKind {
+  kOffice,   ///< office_scene.hpp: rooms, furniture, a corridor (sensors on the walkway loop)
+  kOutdoor,  ///< outdoor_scene.hpp: a car park dominated by its ground (sensors on the road)
+};
+
+/// What builds the dense map (the target).
+enum class DenseSensor {
+  kKinect,   ///< a hand-held Kinect 2 around the walkway (office only)
+  kVlp16,    ///< revolutions of a VLP-16
+  kLidar64,  ///< revolutions of a 64-beam lidar (lidar64Parameters)
+};
+
 struct MapSimulationOptions {
   uint64_t seed = 1;               ///< scene layout and sensor noise
+  SceneKind scene = SceneKind::kOffice;
+  DenseSensor dense_sensor = DenseSensor::kKinect;
+  /// Lidar dense sensors: revolutions accumulated into the dense map.
+  int dense_revolutions = 4;
+  /// Lidar dense sensors only: the dense revolutions are taken from the sparse scan's own pose,
+  /// by the same sensor on the same azimuth grid, and the sparse map is one more revolution cut
+  /// to the rings within +-15 degrees (every other ring of a VLP-16, 11 rings of the 64-beam).
+  /// Every sparse return then lies on the dense map's sampling lattice: the case where a yaw of
+  /// whole azimuth steps fits the ground almost as well as the truth.
+  bool same_pose = false;
   int kinect_frames = 24;          ///< depth frames around the walkway loop
   int velodyne_revolutions = 3;    ///< lidar stops around the loop, one revolution each
   double dense_voxel_size = 0.03;  ///< [m] voxel grid of the accumulated dense map; 0 keeps all
@@ -34,14 +59,19 @@ struct MapSimulationOptions {
 };
 
 struct SimulatedMaps {
-  OfficeScene office;  ///< in the dense map frame, before distortion
+  Scene scene;         ///< what was scanned, in the dense map frame, before distortion
+  OfficeScene office;  ///< the office (office scenes only)
   PointList dense;     ///< target, dense map frame
   PointList sparse;    ///< source, sparse map frame
   Eigen::Isometry3d T_target_source = Eigen::Isometry3d::Identity();
   std::vector<Eigen::Isometry3d> kinect_poses;    ///< T_dense_camera, before distortion
+  std::vector<Eigen::Isometry3d> dense_lidar_poses;  ///< T_dense_lidar (lidar dense sensors)
   std::vector<Eigen::Isometry3d> velodyne_poses;  ///< T_sparse_lidar
   size_t dense_raw_points = 0;  ///< accumulated depth points before the voxel grid
 };
+
+/// Empty when the options can be simulated, otherwise why not (e.g. a Kinect outdoors).
+std::string validateSimulationOptions(const MapSimulationOptions& options);
 
 /// Rz(yaw) Ry(pitch) Rx(roll) with the translation.
 Eigen::Isometry3d transformFromYawPitchRoll(double yaw_deg, double pitch_deg, double roll_deg,

@@ -25,6 +25,15 @@ struct VelodyneParameters {
   bool noise = true;          ///< false: exact ranges (for tests)
 };
 
+/// A 64-beam spinning lidar (Pandar64 / HDL-64 class): 64 rings evenly from -25 to +15 degrees,
+/// the VLP-16's 0.2 degree azimuth grid, 2 cm range noise, 120 m.
+VelodyneParameters lidar64Parameters();
+
+/// `count` rings of `parameters` (first, first + stride, ...) on the same azimuth grid: a scan of
+/// the same sensor cut to fewer rings, whose returns fall on the full sensor's sampling lattice.
+VelodyneParameters ringSubset(const VelodyneParameters& parameters, int first, int stride,
+                              int count);
+
 /// Firings per revolution (360 / azimuth_step_deg, rounded).
 int velodyneColumns(const VelodyneParameters& parameters);
 
