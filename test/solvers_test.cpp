@@ -27,7 +27,6 @@ WeightedCorrespondences makeCorrespondences(const Eigen::Isometry3d& T, double n
   std::uniform_real_distribution<double> coordinate(-5.0, 5.0), weight(0.1, 2.0);
   std::normal_distribution<double> gaussian(0.0, 1.0);
   WeightedCorrespondences c;
-  c.inverse_kappa = inverse_kappa;
   for (int i = 0; i < count; ++i) {
     const Point x(coordinate(generator), coordinate(generator), coordinate(generator));
     const Point n =
@@ -38,6 +37,9 @@ WeightedCorrespondences makeCorrespondences(const Eigen::Isometry3d& T, double n
         T * x + noise * Point(gaussian(generator), gaussian(generator), gaussian(generator)));
     c.weight.push_back(weight(generator));
     c.normal.push_back(n);
+    c.inverse_kappa.push_back(inverse_kappa);
+    c.spread_across.push_back(0.0);
+    c.spread_along.push_back(0.0);
   }
   return c;
 }

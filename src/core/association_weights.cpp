@@ -10,6 +10,8 @@ namespace pda_registration {
 namespace {
 
 constexpr double kDimension = 3.0;
+// Fewer source points on a known surface than this (or a tenth): sigma from the whole residual.
+constexpr size_t kMinimumSurfacePoints = 10;
 
 // base^exponent for base in (0, 1]: repeated multiplication when 2*exponent is a small integer
 // (nu = 1, 3, 5, ... and nu = 2, 4, ... give (nu + 3) / 2 of that form), std::pow otherwise.
@@ -56,16 +58,17 @@ void computeCandidateWeights(const double* squared_residuals, size_t count, doub
   }
 }
 
-WeightedCorrespondences computeWeightedCorrespondences(
-    const PointList& source, const CandidateSets& candidates, const PointList& normals,
-    double inverse_kappa, const Eigen::Isometry3d& T_target_source, double nu, double sigma_squared,
-    int threads) {
+WeightedCorrespondences computeWeightedCorrespondences(const PointList& source,
+                                                       const CandidateSets& candidates,
+                                                       const NoiseShapes& shapes,
+                                                       const Eigen::Isometry3d& T_target_source,
+                                                       double nu, double sigma_squared,
+                                                       int threads) {
   const size_t n = candidates.sourceCount();
   // Per-source results are written to fixed slots in parallel and compacted serially, so the
   // sums (and therefore the estimate) are the same for any thread count.
   PointList means(n, Point::Zero());
-  std::vector<double> weights(n, 0.0);
-  std::vector<double> spreads(n, 0.0);
+  std::vector<double> weights(n, 0.0), across(n, 0.0), along(n, 0.0);
 
 #pragma omp parallel num_threads(std::max(threads, 1))
   {
@@ -79,7 +82,8 @@ WeightedCorrespondences computeWeightedCorrespondences(
       posterior.resize(count);
       rho.resize(count);
       const Point x = T_target_source * source[j];
-      const Point normal = normals.empty() ? Point::Zero() : normals[j];
+      const Point normal = shapes.normalAt(j);
+      const double inverse_kappa = shapes.inverseKappaAt(j);
       for (size_t i = 0; i < count; ++i) {
         residuals[i] = shapedSquaredNorm(y[i] - x, normal, inverse_kappa);
       }
@@ -93,18 +97,22 @@ WeightedCorrespondences computeWeightedCorrespondences(
       }
       if (!(w > 0.0)) continue;
       mean /= w;
-      double spread = 0.0;
+      double spread_across = 0.0, spread_along = 0.0;
       for (size_t i = 0; i < count; ++i) {
-        spread += rho[i] * shapedSquaredNorm(y[i] - mean, normal, inverse_kappa);
+        double a = 0.0, b = 0.0;
+        splitSquaredResidual(y[i] - mean, normal, &a, &b);
+        spread_across += rho[i] * a;
+        spread_along += rho[i] * b;
       }
       means[j] = mean;
       weights[j] = w;
-      spreads[j] = spread;
+      across[j] = spread_across;
+      along[j] = spread_along;
     }
   }
 
   WeightedCorrespondences out;
-  out.inverse_kappa = inverse_kappa;
+  out.sampling = shapes.sampling;
   const size_t used = static_cast<size_t>(
       std::count_if(weights.begin(), weights.end(), [](double w) { return w > 0.0; }));
   out.source_index.reserve(used);
@@ -112,20 +120,25 @@ WeightedCorrespondences computeWeightedCorrespondences(
   out.target_mean.reserve(used);
   out.weight.reserve(used);
   out.normal.reserve(used);
+  out.inverse_kappa.reserve(used);
+  out.spread_across.reserve(used);
+  out.spread_along.reserve(used);
   for (size_t j = 0; j < n; ++j) {
     if (!(weights[j] > 0.0)) continue;
     out.source_index.push_back(j);
     out.source.push_back(source[j]);
     out.target_mean.push_back(means[j]);
     out.weight.push_back(weights[j]);
-    out.normal.push_back(normals.empty() ? Point::Zero() : normals[j]);
-    out.spread += spreads[j];
+    out.normal.push_back(shapes.normalAt(j));
+    out.inverse_kappa.push_back(shapes.inverseKappaAt(j));
+    out.spread_across.push_back(across[j]);
+    out.spread_along.push_back(along[j]);
   }
   return out;
 }
 
 Associations computeAssociations(const PointList& source, const CandidateSets& candidates,
-                                 const PointList& normals, double inverse_kappa,
+                                 const NoiseShapes& shapes,
                                  const Eigen::Isometry3d& T_target_source, double nu,
                                  double sigma_squared) {
   Associations out;
@@ -135,7 +148,8 @@ Associations computeAssociations(const PointList& source, const CandidateSets& c
     const size_t count = candidates.candidateCount(j);
     if (count == 0) continue;
     const Point x = T_target_source * source[j];
-    const Point normal = normals.empty() ? Point::Zero() : normals[j];
+    const Point normal = shapes.normalAt(j);
+    const double inverse_kappa = shapes.inverseKappaAt(j);
     const Point* y = &candidates.points[candidates.offsets[j]];
     residuals.resize(count);
     rho.resize(count);
@@ -152,23 +166,36 @@ Associations computeAssociations(const PointList& source, const CandidateSets& c
   return out;
 }
 
-double weightedObjective(const WeightedCorrespondences& correspondences,
+double weightedObjective(const WeightedCorrespondences& c,
                          const Eigen::Isometry3d& T_target_source) {
-  double total = correspondences.spread;
-  for (size_t i = 0; i < correspondences.size(); ++i) {
-    total += correspondences.weight[i] *
-             shapedSquaredNorm(
-                 correspondences.target_mean[i] - T_target_source * correspondences.source[i],
-                 correspondences.normal[i], correspondences.inverse_kappa);
+  double total = 0.0;
+  for (size_t i = 0; i < c.size(); ++i) {
+    total += c.weight[i] * shapedSquaredNorm(c.target_mean[i] - T_target_source * c.source[i],
+                                             c.normal[i], c.inverse_kappa[i]) +
+             c.spread_across[i] + c.inverse_kappa[i] * c.spread_along[i];
   }
   return total;
 }
 
-double estimateSigmaSquared(const WeightedCorrespondences& correspondences,
+double estimateSigmaSquared(const WeightedCorrespondences& c,
                             const Eigen::Isometry3d& T_target_source) {
-  if (correspondences.size() == 0) return 0.0;
-  return weightedObjective(correspondences, T_target_source) /
-         (kDimension * static_cast<double>(correspondences.size()));
+  if (c.size() == 0) return 0.0;
+  if (c.sampling) {
+    // sigma is the noise across the surface: measured where the surface (its normal) is known.
+    // Along the surface the residual is mostly the target's sampling, which s_j models.
+    double across_sum = 0.0;
+    size_t with_normal = 0;
+    for (size_t i = 0; i < c.size(); ++i) {
+      if (!(c.normal[i].squaredNorm() > 0.0)) continue;
+      double across = 0.0, along = 0.0;
+      splitSquaredResidual(c.target_mean[i] - T_target_source * c.source[i], c.normal[i],
+                           &across, &along);
+      across_sum += c.weight[i] * across + c.spread_across[i];
+      ++with_normal;
+    }
+    if (with_normal >= std::max(kMinimumSurfacePoints, c.size() / 10)) return across_sum / static_cast<double>(with_normal);
+  }
+  return weightedObjective(c, T_target_source) / (kDimension * static_cast<double>(c.size()));
 }
 
 double initialSigmaSquared(const PointList& source, const CandidateSets& candidates,

@@ -44,7 +44,7 @@ bool solveWithCeres(const WeightedCorrespondences& correspondences, int max_iter
     problem.AddResidualBlock(
         new ceres::AutoDiffCostFunction<WeightedPointResidual, 3, 4, 3>(new WeightedPointResidual(
             correspondences.source[i], correspondences.target_mean[i], correspondences.weight[i],
-            shapeInverseSqrt(correspondences.normal[i], correspondences.inverse_kappa))),
+            shapeInverseSqrt(correspondences.normal[i], correspondences.inverse_kappa[i]))),
         nullptr, rotation.coeffs().data(), translation.data());
   }
   problem.SetManifold(rotation.coeffs().data(), new ceres::EigenQuaternionManifold);

@@ -20,7 +20,7 @@ bool solveGaussNewton(const WeightedCorrespondences& correspondences, int max_it
       const Eigen::Vector3d error = rotated + T.translation() - correspondences.target_mean[i];
       const Eigen::Matrix3d information =
           correspondences.weight[i] *
-          shapeInverse(correspondences.normal[i], correspondences.inverse_kappa);
+          shapeInverse(correspondences.normal[i], correspondences.inverse_kappa[i]);
       const PoseJacobian jacobian = poseJacobian(rotated);
       const Eigen::Matrix<double, 6, 3> jt_information = jacobian.transpose() * information;
       hessian.noalias() += jt_information * jacobian;

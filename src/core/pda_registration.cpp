@@ -14,6 +14,7 @@
 #include "pda_registration/core/degeneracy.hpp"
 #include "pda_registration/core/gauss_newton_solver.hpp"
 #include "pda_registration/core/nearest_rotation.hpp"
+#include "pda_registration/core/noise_shapes.hpp"
 #include "pda_registration/core/point_filter.hpp"
 #include "pda_registration/core/pose_covariance.hpp"
 
@@ -118,20 +119,22 @@ bool runEm(const PointList& source, const CandidateSets& candidates,
            const SurfaceNormalMap& normal_map, const RegistrationParameters& p, EmState* state,
            bool* settled, int* em_iterations) {
   const bool estimate_sigma = p.sigma_mode == SigmaMode::kEstimated;
-  const bool surface_model = p.surface_anisotropy > 1.0;
   // A floor keeps the t-weights defined when the clouds match exactly (sigma -> 0).
   const double sigma_squared_floor = std::pow(1e-6 * p.radius, 2);
-  const PointList normals =
-      surface_model ? lookupNormals(normal_map, source, state->T, p.threads) : PointList();
+  const PointList normals = p.surface_anisotropy > 1.0
+                                ? lookupNormals(normal_map, source, state->T, p.threads)
+                                : PointList();
+  const std::vector<double> spread =
+      usesSamplingModel(p) ? candidateSpread(candidates, p.threads) : std::vector<double>();
   if (estimate_sigma && state->sigma_squared == 0.0) {
     state->sigma_squared =
         std::max(initialSigmaSquared(source, candidates, state->T), sigma_squared_floor);
   }
   *settled = false;
   for (int iteration = 0; iteration < p.max_em_iterations; ++iteration) {
-    const WeightedCorrespondences correspondences =
-        computeWeightedCorrespondences(source, candidates, normals, 1.0 / p.surface_anisotropy,
-                                       state->T, p.nu, state->sigma_squared, p.threads);
+    const NoiseShapes shapes = makeNoiseShapes(normals, spread, state->sigma_squared, p);
+    const WeightedCorrespondences correspondences = computeWeightedCorrespondences(
+        source, candidates, shapes, state->T, p.nu, state->sigma_squared, p.threads);
     Eigen::Isometry3d T_next = state->T;
     if (!runMStep(correspondences, p, &T_next)) return false;
     if (estimate_sigma) {
@@ -155,9 +158,12 @@ void fillFinalStatistics(const PointList& source, const CandidateSets& candidate
                          const EmState& state, RegistrationResult* result,
                          Associations* associations) {
   const PointList normals = lookupNormals(normal_map, source, state.T, p.threads);
+  const NoiseShapes shapes = makeNoiseShapes(
+      p.surface_anisotropy > 1.0 ? normals : PointList(),
+      usesSamplingModel(p) ? candidateSpread(candidates, p.threads) : std::vector<double>(),
+      state.sigma_squared, p);
   const WeightedCorrespondences correspondences = computeWeightedCorrespondences(
-      source, candidates, p.surface_anisotropy > 1.0 ? normals : PointList(),
-      1.0 / p.surface_anisotropy, state.T, p.nu, state.sigma_squared, p.threads);
+      source, candidates, shapes, state.T, p.nu, state.sigma_squared, p.threads);
   computePoseCovariance(correspondences, state.T, state.sigma_squared, &result->covariance);
   fillInlierStatistics(source, candidates, state.T, p.inlier_sigmas * result->sigma, result);
   PointList moved(source.size());
@@ -165,8 +171,7 @@ void fillFinalStatistics(const PointList& source, const CandidateSets& candidate
   result->degeneracy_ratio = constraintEigenvalueRatio(moved, normals);
   if (associations) {
     *associations =
-        computeAssociations(source, candidates, p.surface_anisotropy > 1.0 ? normals : PointList(),
-                            1.0 / p.surface_anisotropy, state.T, p.nu, state.sigma_squared);
+        computeAssociations(source, candidates, shapes, state.T, p.nu, state.sigma_squared);
   }
 }
 

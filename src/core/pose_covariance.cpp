@@ -17,7 +17,7 @@ bool computePoseCovariance(const WeightedCorrespondences& correspondences,
     const PoseJacobian jacobian =
         poseJacobian(T_target_source.linear() * correspondences.source[i]);
     hessian.noalias() += correspondences.weight[i] * jacobian.transpose() *
-                         shapeInverse(correspondences.normal[i], correspondences.inverse_kappa) *
+                         shapeInverse(correspondences.normal[i], correspondences.inverse_kappa[i]) *
                          jacobian;
   }
   const Eigen::LDLT<Matrix6d> factorization(hessian);

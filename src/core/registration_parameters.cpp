@@ -33,6 +33,8 @@ std::string validateParameters(const RegistrationParameters& p) {
     error << "solver_max_iterations must be in [1, 1000] (got " << p.solver_max_iterations << ")";
   else if (!(std::isfinite(p.surface_anisotropy) && p.surface_anisotropy >= 1.0))
     error << "surface_anisotropy must be >= 1 and finite (got " << p.surface_anisotropy << ")";
+  else if (!finiteNonNegative(p.sampling_scale) || p.sampling_scale > 1e6)
+    error << "sampling_scale must be in [0, 1e6] (got " << p.sampling_scale << ")";
   else if (p.solver == MStepSolver::kClosedForm && p.surface_anisotropy != 1.0)
     error << "solver closed_form needs surface_anisotropy = 1 (it cannot weigh surface normals);"
           << " use gauss_newton or ceres";

@@ -24,6 +24,7 @@ std::set<std::string> settingsFlagNames() {
           "ndt-resolution",
           "ndt-step-size",
           "anisotropy",
+          "sampling-scale",
           "normal-voxel",
           "solver-iterations",
           "coarse-stride",
@@ -62,6 +63,9 @@ std::string settingsFlagsHelp() {
        << ")\n"
        << "  --anisotropy K          surface anisotropy kappa, 1 = paper's isotropic model ("
        << p.surface_anisotropy << ")\n"
+       << "  --sampling-scale S      sampling model: along-surface tolerance in units of the\n"
+       << "                          target's local sampling spread, 0 = constant kappa ("
+       << p.sampling_scale << ")\n"
        << "  --normal-voxel V        voxel of the target normal map [m] (" << p.normal_voxel_size
        << ")\n"
        << "  --sigma-mode M          estimated | fixed (" << toString(p.sigma_mode) << ")\n"
@@ -116,6 +120,7 @@ bool readSettingsFlags(CommandLine* cl, MethodSettings* settings,
       !number("ndt-resolution", &b.ndt_resolution, 1e-6, 1e6) ||
       !number("ndt-step-size", &b.ndt_step_size, 1e-9, 1e6) ||
       !number("anisotropy", &p.surface_anisotropy, 1.0, 1e12) ||
+      !number("sampling-scale", &p.sampling_scale, 0.0, 1e6) ||
       !number("normal-voxel", &p.normal_voxel_size, 1e-9, 1e6) ||
       !integer("solver-iterations", &p.solver_max_iterations, 1, 1000) ||
       !integer("coarse-stride", &p.coarse_stride, 1, 1000) ||

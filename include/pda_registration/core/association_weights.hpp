@@ -14,6 +14,7 @@
 
 #include "pda_registration/core/associations.hpp"
 #include "pda_registration/core/candidate_sets.hpp"
+#include "pda_registration/core/noise_shapes.hpp"
 #include "pda_registration/core/point_list.hpp"
 
 namespace pda_registration {
@@ -29,24 +30,28 @@ struct WeightedCorrespondences {
   PointList source;                  ///< x_j (in the source frame)
   PointList target_mean;             ///< y_bar_j (in the target frame)
   std::vector<double> weight;        ///< W_j = sum_k rho_jk
-  PointList normal;                  ///< n_j of the noise shape (zero: isotropic)
-  double inverse_kappa = 1.0;        ///< 1 / surface anisotropy, shared by all
-  double spread = 0.0;               ///< sum_j S_j, the part of the objective no pose can remove
+  PointList normal;                  ///< n_j of the noise shape (zero: no normal)
+  std::vector<double> inverse_kappa; ///< 1 / kappa_j of the noise shape
+  /// S_j split across / along the surface (splitSquaredResidual): the part of the objective no
+  /// pose can remove; the shaped spread is spread_across + inverse_kappa * spread_along.
+  std::vector<double> spread_across, spread_along;
+  bool sampling = false;  ///< the shapes follow sigma (noise_shapes.hpp): sigma^2 updates differ
 
   size_t size() const { return source.size(); }
 };
 
-/// Runs the E-step at the current estimate for every source point with candidates.
-/// `normals` holds one target-surface normal per source point (zero where unknown) or is empty
-/// for the isotropic model; `inverse_kappa` = 1 / surface anisotropy.
-WeightedCorrespondences computeWeightedCorrespondences(
-    const PointList& source, const CandidateSets& candidates, const PointList& normals,
-    double inverse_kappa, const Eigen::Isometry3d& T_target_source, double nu, double sigma_squared,
-    int threads);
+/// Runs the E-step at the current estimate for every source point with candidates, each in its
+/// noise shape (one per source point; isotropic when `shapes` is).
+WeightedCorrespondences computeWeightedCorrespondences(const PointList& source,
+                                                       const CandidateSets& candidates,
+                                                       const NoiseShapes& shapes,
+                                                       const Eigen::Isometry3d& T_target_source,
+                                                       double nu, double sigma_squared,
+                                                       int threads);
 
 /// The per-candidate posteriors at T, for inspection (same model as the E-step).
 Associations computeAssociations(const PointList& source, const CandidateSets& candidates,
-                                 const PointList& normals, double inverse_kappa,
+                                 const NoiseShapes& shapes,
                                  const Eigen::Isometry3d& T_target_source, double nu,
                                  double sigma_squared);
 
@@ -54,8 +59,10 @@ Associations computeAssociations(const PointList& source, const CandidateSets& c
 double weightedObjective(const WeightedCorrespondences& correspondences,
                          const Eigen::Isometry3d& T_target_source);
 
-/// EM update of sigma^2 for Sigma = sigma^2 I_d: the weighted objective at T divided by
-/// d times the number of source points with candidates.
+/// EM update of sigma^2. Fixed shapes (Sigma_j = sigma^2 M_j): the weighted objective at T divided
+/// by d times the number of source points with candidates. Sampling shapes (noise_shapes.hpp):
+/// sigma^2 is the noise across the surface, so the update is the weighted mean squared residual
+/// along the normal over the points that have one (the objective's form when fewer than 10 do).
 double estimateSigmaSquared(const WeightedCorrespondences& correspondences,
                             const Eigen::Isometry3d& T_target_source);
 

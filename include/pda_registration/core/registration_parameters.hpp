@@ -31,8 +31,12 @@ struct RegistrationParameters {
   SigmaMode sigma_mode = SigmaMode::kEstimated;
   double fixed_sigma = 1.0;  ///< [length] sigma used when sigma_mode == kFixed
   /// kappa of the noise shape (noise_model.hpp): how much less a residual along the target
-  /// surface counts than one across it. 1 = the paper's isotropic Sigma = sigma^2 I.
+  /// surface counts than one across it. 1 = the paper's isotropic Sigma = sigma^2 I. With the
+  /// sampling model (sampling_scale > 0) it is the least kappa where a normal is known.
   double surface_anisotropy = 1000.0;
+  /// The sampling model (noise_shapes.hpp): along the surface a residual is tolerated up to
+  /// sqrt(sampling_scale) times the target's local sampling spread. Unit-free. 0 = constant kappa.
+  double sampling_scale = 1.0;
   double normal_voxel_size = 0.15; ///< [length] voxel of the target normal map (> 0)
   // --- EM loop inside one run (candidate sets fixed) ----------------------------------------
   int max_em_iterations = 5;

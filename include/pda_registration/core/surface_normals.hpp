@@ -17,7 +17,7 @@ namespace pda_registration {
 
 class SurfaceNormalMap {
  public:
-  static constexpr int kLevels = 4;
+  static constexpr int kLevels = 6;
 
   SurfaceNormalMap() = default;
   /// finest_voxel_size <= 0 builds an empty map (every lookup says "no normal").

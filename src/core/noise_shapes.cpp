@@ -1,0 +1,54 @@
+#include "pda_registration/core/noise_shapes.hpp"
+
+#include <algorithm>
+
+namespace pda_registration {
+
+std::vector<double> candidateSpread(const CandidateSets& candidates, int threads) {
+  const size_t n = candidates.sourceCount();
+  std::vector<double> spread(n, 0.0);
+#pragma omp parallel for schedule(static) num_threads(std::max(threads, 1))
+  for (long long j = 0; j < static_cast<long long>(n); ++j) {
+    const size_t begin = candidates.offsets[j], end = candidates.offsets[j + 1];
+    if (end - begin < 2) continue;
+    Point centroid = Point::Zero();
+    for (size_t c = begin; c < end; ++c) centroid += candidates.points[c];
+    centroid /= static_cast<double>(end - begin);
+    double sum = 0.0;
+    for (size_t c = begin; c < end; ++c) sum += (candidates.points[c] - centroid).squaredNorm();
+    spread[j] = sum / static_cast<double>(end - begin);
+  }
+  return spread;
+}
+
+bool usesSamplingModel(const RegistrationParameters& p) {
+  return p.surface_anisotropy > 1.0 && p.sampling_scale > 0.0;
+}
+
+NoiseShapes makeNoiseShapes(const PointList& normals, const std::vector<double>& spread,
+                            double sigma_squared, const RegistrationParameters& p) {
+  NoiseShapes shapes;
+  if (!(p.surface_anisotropy > 1.0)) return shapes;  // the paper's isotropic model
+  shapes.normal = normals;
+  shapes.inverse_kappa.assign(normals.size(), 1.0);
+  if (!usesSamplingModel(p)) {
+    for (size_t j = 0; j < normals.size(); ++j) {
+      if (normals[j].squaredNorm() > 0.0) shapes.inverse_kappa[j] = 1.0 / p.surface_anisotropy;
+    }
+    return shapes;
+  }
+  shapes.sampling = true;
+  // Along the surface: the larger of the constant kappa's sigma^2 kappa and sigma^2 + s_j^2.
+  // Without a normal: sigma^2 + s_j^2 in every direction.
+  const double constant_inverse_kappa = 1.0 / p.surface_anisotropy;
+  for (size_t j = 0; j < normals.size() && j < spread.size(); ++j) {
+    const double total = sigma_squared + p.sampling_scale * spread[j];
+    const double sampling_inverse_kappa = total > 0.0 ? sigma_squared / total : 1.0;
+    shapes.inverse_kappa[j] = normals[j].squaredNorm() > 0.0
+                                  ? std::min(constant_inverse_kappa, sampling_inverse_kappa)
+                                  : sampling_inverse_kappa;
+  }
+  return shapes;
+}
+
+}  // namespace pda_registration
