@@ -9,3 +9,9 @@ target_link_libraries(simulation_test
 target_compile_definitions(simulation_test PRIVATE
   PDA_SIMULATE_BINARY="$<TARGET_FILE:pda_simulate>")
 add_dependencies(simulation_test pda_simulate)
+
+# Registration on the simulated outdoor and same-sensor lattice cases (no ROS needed).
+catkin_add_gtest(lattice_registration_test lattice_registration_test.cpp)
+target_compile_options(lattice_registration_test PRIVATE ${PDA_WARNINGS})
+target_link_libraries(lattice_registration_test
+  pda_test_support pda_registration_simulation gtest_main)

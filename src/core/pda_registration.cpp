@@ -368,6 +368,16 @@ RegistrationResult PdaRegistration::alignUnchecked(const PointList& source_input
              << last_run_step.translation << " and rotated " << last_run_step.rotation << " rad)";
     }
     result.reason = reason.str();
+  } else if (result.inlier_fraction < p.min_support_fraction) {
+    // sigma has settled on a small subset that fits almost exactly (a lattice alias of two scans
+    // of one lidar, only the ground rings): the rest of the source says the pose is wrong.
+    std::ostringstream reason;
+    reason << "unsupported: only " << 100.0 * result.inlier_fraction
+           << " % of the source lies within " << p.inlier_sigmas << " sigma (sigma " << result.sigma
+           << ") of the target; the estimate rests on a subset (need "
+           << 100.0 * p.min_support_fraction << " %)";
+    result.converged = false;
+    result.reason = reason.str();
   } else if (result.degeneracy_ratio >= 0.0 && result.degeneracy_ratio < p.degeneracy_threshold) {
     std::ostringstream reason;
     reason << "degenerate geometry: the overlap constrains some direction weakly (eigenvalue "

@@ -52,6 +52,8 @@ std::string validateParameters(const RegistrationParameters& p) {
     error << "min_correspondences must be >= 3 (got " << p.min_correspondences << ")";
   else if (!finitePositive(p.inlier_sigmas))
     error << "inlier_sigmas must be > 0 (got " << p.inlier_sigmas << ")";
+  else if (!(p.min_support_fraction >= 0.0 && p.min_support_fraction <= 1.0))
+    error << "min_support_fraction must be in [0, 1] (got " << p.min_support_fraction << ")";
   else if (!(p.degeneracy_threshold >= 0.0 && p.degeneracy_threshold < 1.0))
     error << "degeneracy_threshold must be in [0, 1) (got " << p.degeneracy_threshold << ")";
   else if (p.threads < 1 || p.threads > 256)

@@ -15,6 +15,7 @@ LiveParameters liveParametersFrom(const PdaRegistrationConfig& c) {
   parseSigmaMode(c.sigma_mode, &p.sigma_mode);  // the .cfg enum only offers valid names
   p.fixed_sigma = c.fixed_sigma;
   p.surface_anisotropy = c.surface_anisotropy;
+  p.sampling_scale = c.sampling_scale;
   p.normal_voxel_size = c.normal_voxel_size;
   p.max_runs = c.runs;
   p.max_em_iterations = c.em_iterations;
@@ -26,6 +27,7 @@ LiveParameters liveParametersFrom(const PdaRegistrationConfig& c) {
   p.source_voxel_size = c.source_voxel_size;
   p.target_voxel_size = c.target_voxel_size;
   p.min_correspondences = c.min_correspondences;
+  p.min_support_fraction = c.min_support_fraction;
   p.threads = c.threads;
   live.acceptance.min_inlier_fraction = c.min_inlier_fraction;
   live.acceptance.max_correction_translation = c.max_correction_translation;

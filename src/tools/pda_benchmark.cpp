@@ -14,6 +14,7 @@
 
 #include "pda_registration/core/error_metrics.hpp"
 #include "pda_registration/core/perturbation.hpp"
+#include "pda_registration/core/point_filter.hpp"
 #include "pda_registration/tools/case_folder.hpp"
 #include "pda_registration/tools/command_line.hpp"
 #include "pda_registration/tools/method_runner.hpp"
@@ -34,6 +35,10 @@ const char* kUsage =
     "  --success M            success threshold on eq. 22 [m] (0.05)\n"
     "  --csv FILE             write every trial\n"
     "  --seed N               first perturbation seed (1)\n"
+    "  --reverse              swap each case's clouds: the sparse map becomes the target (the\n"
+    "                         nodelet's target_cloud:=sparse); rows are named CASE:reversed\n"
+    "  --thin-target V        voxel-downsample each case's target to V metres before every\n"
+    "                         method (a sparser map); rows are named CASE:target_V\n"
     "  PDA and the PCL methods share --radius (ICP/GICP max correspondence distance) and the\n"
     "  voxel sizes; pda_single is PDA with --runs 1 and up to 100 EM iterations.\n";
 
@@ -65,7 +70,8 @@ int fail(const std::string& message) { return reportError("pda_benchmark", messa
 
 int main(int argc, char** argv) {
   CommandLine cl = commandLineWithSettings(
-      {"data", "cases", "levels", "trials", "methods", "success", "csv", "seed"});
+      {"data", "cases", "levels", "trials", "methods", "success", "csv", "seed", "thin-target"},
+      {"reverse"});
   if (!cl.parse(argc, argv)) return fail(cl.error());
   if (cl.has("help")) {
     std::cout << kUsage << settingsFlagsHelp();
@@ -75,9 +81,10 @@ int main(int argc, char** argv) {
   MethodSettings settings;
   if (!readSettingsFlags(&cl, &settings)) return fail(cl.error());
   int trials = 10, first_seed = 1;
-  double success_threshold = 0.05;
+  double success_threshold = 0.05, thin_target = 0.0;
   if (!cl.integer("trials", &trials, 1, 100000) || !cl.integer("seed", &first_seed, 0, 1 << 30) ||
-      !cl.number("success", &success_threshold, 0.0, 1e6)) {
+      !cl.number("success", &success_threshold, 0.0, 1e6) ||
+      !cl.number("thin-target", &thin_target, 0.0, 1e3)) {
     return fail(cl.error());
   }
   std::vector<Level> levels;
@@ -109,13 +116,27 @@ int main(int argc, char** argv) {
   }
   if (cases.empty()) return fail("no cases found in '" + data + "'");
 
+  // Variants of every case: the clouds swapped, the target thinned.
+  std::string variant;
+  if (cl.has("reverse")) variant += ":reversed";
+  if (thin_target > 0.0) {
+    std::ostringstream name;
+    name << ":target_" << thin_target;
+    variant += name.str();
+  }
   std::vector<Trial> all;
-  for (const std::string& name : cases) {
+  for (std::string& name : cases) {
     CaseFolder loaded;
     std::string error;
     if (!loadCaseFolder(data + "/" + name, &loaded, &error)) {
       return fail("case '" + name + "': " + error);
     }
+    if (cl.has("reverse")) {
+      std::swap(loaded.target, loaded.source);
+      loaded.T_target_source = loaded.T_target_source.inverse();
+    }
+    if (thin_target > 0.0) loaded.target = voxelDownsample(loaded.target, thin_target);
+    name += variant;
     const PointList& target = loaded.target;
     const PointList& source = loaded.source;
     const Eigen::Isometry3d truth = loaded.T_target_source;

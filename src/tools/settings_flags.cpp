@@ -20,6 +20,7 @@ std::set<std::string> settingsFlagNames() {
           "translation-epsilon",
           "rotation-epsilon",
           "min-correspondences",
+          "min-support",
           "max-iterations",
           "ndt-resolution",
           "ndt-step-size",
@@ -35,10 +36,13 @@ std::set<std::string> settingsFlagNames() {
           "crop-rotation"};
 }
 
-CommandLine commandLineWithSettings(const std::set<std::string>& tool_value_flags) {
+CommandLine commandLineWithSettings(const std::set<std::string>& tool_value_flags,
+                                    const std::set<std::string>& tool_switches) {
   std::set<std::string> value_flags = settingsFlagNames();
   value_flags.insert(tool_value_flags.begin(), tool_value_flags.end());
-  return CommandLine(value_flags, {"help"});
+  std::set<std::string> switches = {"help"};
+  switches.insert(tool_switches.begin(), tool_switches.end());
+  return CommandLine(value_flags, switches);
 }
 
 std::string settingsFlagsHelp() {
@@ -77,6 +81,8 @@ std::string settingsFlagsHelp() {
        << ")\n"
        << "  --translation-epsilon E convergence threshold [m] (" << p.translation_epsilon << ")\n"
        << "  --rotation-epsilon E    convergence threshold [rad] (" << p.rotation_epsilon << ")\n"
+       << "  --min-support F         fewer inliers than this fraction of the source = not\n"
+       << "                          converged (" << p.min_support_fraction << ")\n"
        << "  --min-correspondences N fewer source points with candidates = failure ("
        << p.min_correspondences << ")\n"
        << "  --crop-above N          targets with more points are indexed only around the\n"
@@ -116,6 +122,7 @@ bool readSettingsFlags(CommandLine* cl, MethodSettings* settings,
       !number("translation-epsilon", &p.translation_epsilon, 0.0, 1e6) ||
       !number("rotation-epsilon", &p.rotation_epsilon, 0.0, 3.2) ||
       !integer("min-correspondences", &p.min_correspondences, 3, 100000000) ||
+      !number("min-support", &p.min_support_fraction, 0.0, 1.0) ||
       !integer("max-iterations", &b.max_iterations, 1, 100000) ||
       !number("ndt-resolution", &b.ndt_resolution, 1e-6, 1e6) ||
       !number("ndt-step-size", &b.ndt_step_size, 1e-9, 1e6) ||

@@ -14,7 +14,8 @@ namespace pda_registration {
 std::set<std::string> settingsFlagNames();
 
 /// A parser for a tool: the shared registration flags, the tool's own value flags, and --help.
-CommandLine commandLineWithSettings(const std::set<std::string>& tool_value_flags);
+CommandLine commandLineWithSettings(const std::set<std::string>& tool_value_flags,
+                                    const std::set<std::string>& tool_switches = {});
 
 /// Help text for those flags, one per line, with defaults.
 std::string settingsFlagsHelp();
