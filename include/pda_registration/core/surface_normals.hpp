@@ -2,7 +2,7 @@
 // Surface normals of the target on voxel grids, for the surface-aware noise model
 // (Sigma_j = sigma^2 (n n^T + kappa (I - n n^T))). Built once per target in one pass over the
 // points: each voxel accumulates its points' first and second moments and its normal is their
-// smallest principal axis, kept only where the voxel is planar. Coarser levels (2x, 4x, 8x the
+// smallest principal axis, kept only where the voxel is planar. Coarser levels (2x ... 32x the
 // voxel) merge their children's moments, and a lookup takes the finest planar level: fine detail
 // on dense maps, while on ring-structured lidar maps (whose small voxels hold a single scan line)
 // the coarser levels still find the surface.
