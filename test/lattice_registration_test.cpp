@@ -16,18 +16,21 @@ namespace pda_registration {
 namespace simulation {
 namespace {
 
+// The car park scanned by lidars only (maps kept whole, as pda_simulate keeps lidar maps).
+MapSimulationOptions carParkOptions(DenseSensor dense_sensor, bool same_pose) {
+  MapSimulationOptions options;
+  options.seed = 3;
+  options.scene = SceneKind::kOutdoor;
+  options.dense_sensor = dense_sensor;
+  options.same_pose = same_pose;
+  options.dense_voxel_size = 0.0;
+  return options;
+}
+
 // A static 64-beam lidar in a car park: the dense map is four revolutions of it, the sparse map
 // one more revolution cut to 11 rings: every sparse return lies on the dense map's lattice.
 const SimulatedMaps& latticeMaps() {
-  static const SimulatedMaps maps = [] {
-    MapSimulationOptions options;
-    options.seed = 3;
-    options.scene = SceneKind::kOutdoor;
-    options.dense_sensor = DenseSensor::kLidar64;
-    options.same_pose = true;
-    options.dense_voxel_size = 0.0;
-    return simulateMaps(options);
-  }();
+  static const SimulatedMaps maps = simulateMaps(carParkOptions(DenseSensor::kLidar64, true));
   return maps;
 }
 
@@ -65,11 +68,7 @@ TEST(LatticeCase, DefaultsRecoverTheTruthInsteadOfAYawOfWholeAzimuthSteps) {
 }
 
 TEST(OutdoorScene, DefaultsAlignAVlp16ScanWithA64BeamMapFromTenDegrees) {
-  MapSimulationOptions options;
-  options.seed = 3;
-  options.scene = SceneKind::kOutdoor;
-  options.dense_sensor = DenseSensor::kLidar64;
-  options.dense_voxel_size = 0.0;
+  MapSimulationOptions options = carParkOptions(DenseSensor::kLidar64, false);
   options.velodyne_revolutions = 1;
   const SimulatedMaps maps = simulateMaps(options);
   RegistrationResult result;
@@ -96,13 +95,7 @@ TEST(HonestVerdict, AResultSupportedByTooSmallAFractionOfTheSourceIsNotConverged
 }
 
 TEST(HonestVerdict, SameSensorVlp16CasesAreEitherRightOrNotConverged) {
-  MapSimulationOptions options;
-  options.seed = 3;
-  options.scene = SceneKind::kOutdoor;
-  options.dense_sensor = DenseSensor::kVlp16;
-  options.same_pose = true;
-  options.dense_voxel_size = 0.0;
-  const SimulatedMaps maps = simulateMaps(options);
+  const SimulatedMaps maps = simulateMaps(carParkOptions(DenseSensor::kVlp16, true));
   for (double degrees : {2.0, 5.0, 10.0}) {
     for (uint64_t seed : {1u, 2u}) {
       RegistrationResult result;

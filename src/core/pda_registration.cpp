@@ -368,6 +368,13 @@ RegistrationResult PdaRegistration::alignUnchecked(const PointList& source_input
              << last_run_step.translation << " and rotated " << last_run_step.rotation << " rad)";
     }
     result.reason = reason.str();
+  } else if (result.degeneracy_ratio >= 0.0 && result.degeneracy_ratio < p.degeneracy_threshold) {
+    std::ostringstream reason;
+    reason << "degenerate geometry: the overlap constrains some direction weakly (eigenvalue "
+           << "ratio " << result.degeneracy_ratio << " < " << p.degeneracy_threshold
+           << ", e.g. a single plane or a corridor)";
+    result.converged = false;
+    result.reason = reason.str();
   } else if (result.inlier_fraction < p.min_support_fraction) {
     // sigma has settled on a small subset that fits almost exactly (a lattice alias of two scans
     // of one lidar, only the ground rings): the rest of the source says the pose is wrong.
@@ -376,13 +383,6 @@ RegistrationResult PdaRegistration::alignUnchecked(const PointList& source_input
            << " % of the source lies within " << p.inlier_sigmas << " sigma (sigma " << result.sigma
            << ") of the target; the estimate rests on a subset (need "
            << 100.0 * p.min_support_fraction << " %)";
-    result.converged = false;
-    result.reason = reason.str();
-  } else if (result.degeneracy_ratio >= 0.0 && result.degeneracy_ratio < p.degeneracy_threshold) {
-    std::ostringstream reason;
-    reason << "degenerate geometry: the overlap constrains some direction weakly (eigenvalue "
-           << "ratio " << result.degeneracy_ratio << " < " << p.degeneracy_threshold
-           << ", e.g. a single plane or a corridor)";
     result.converged = false;
     result.reason = reason.str();
   }
