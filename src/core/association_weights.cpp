@@ -193,7 +193,9 @@ double estimateSigmaSquared(const WeightedCorrespondences& c,
       across_sum += c.weight[i] * across + c.spread_across[i];
       ++with_normal;
     }
-    if (with_normal >= std::max(kMinimumSurfacePoints, c.size() / 10)) return across_sum / static_cast<double>(with_normal);
+    if (with_normal >= std::max(kMinimumSurfacePoints, c.size() / 10)) {
+      return across_sum / static_cast<double>(with_normal);
+    }
   }
   return weightedObjective(c, T_target_source) / (kDimension * static_cast<double>(c.size()));
 }

@@ -107,6 +107,22 @@ void fillInlierStatistics(const PointList& source, const CandidateSets& candidat
   result->mean_residual = inliers == 0 ? 0.0 : distance_sum / static_cast<double>(inliers);
 }
 
+// What the noise shapes of one run are made from: the target normals at the moved source points
+// (not needed by the isotropic model) and the candidates' sampling spread (sampling model only).
+struct ShapeInputs {
+  PointList normals;
+  std::vector<double> spread;
+};
+
+ShapeInputs shapeInputs(const SurfaceNormalMap& normal_map, const PointList& source,
+                        const CandidateSets& candidates, const Eigen::Isometry3d& T,
+                        const RegistrationParameters& p) {
+  ShapeInputs inputs;
+  if (p.surface_anisotropy > 1.0) inputs.normals = lookupNormals(normal_map, source, T, p.threads);
+  if (usesSamplingModel(p)) inputs.spread = candidateSpread(candidates, p.threads);
+  return inputs;
+}
+
 // The part of the EM state that carries over from run to run.
 struct EmState {
   Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
@@ -121,18 +137,15 @@ bool runEm(const PointList& source, const CandidateSets& candidates,
   const bool estimate_sigma = p.sigma_mode == SigmaMode::kEstimated;
   // A floor keeps the t-weights defined when the clouds match exactly (sigma -> 0).
   const double sigma_squared_floor = std::pow(1e-6 * p.radius, 2);
-  const PointList normals = p.surface_anisotropy > 1.0
-                                ? lookupNormals(normal_map, source, state->T, p.threads)
-                                : PointList();
-  const std::vector<double> spread =
-      usesSamplingModel(p) ? candidateSpread(candidates, p.threads) : std::vector<double>();
+  const ShapeInputs inputs = shapeInputs(normal_map, source, candidates, state->T, p);
   if (estimate_sigma && state->sigma_squared == 0.0) {
     state->sigma_squared =
         std::max(initialSigmaSquared(source, candidates, state->T), sigma_squared_floor);
   }
   *settled = false;
   for (int iteration = 0; iteration < p.max_em_iterations; ++iteration) {
-    const NoiseShapes shapes = makeNoiseShapes(normals, spread, state->sigma_squared, p);
+    const NoiseShapes shapes =
+        makeNoiseShapes(inputs.normals, inputs.spread, state->sigma_squared, p);
     const WeightedCorrespondences correspondences = computeWeightedCorrespondences(
         source, candidates, shapes, state->T, p.nu, state->sigma_squared, p.threads);
     Eigen::Isometry3d T_next = state->T;
@@ -157,11 +170,12 @@ void fillFinalStatistics(const PointList& source, const CandidateSets& candidate
                          const SurfaceNormalMap& normal_map, const RegistrationParameters& p,
                          const EmState& state, RegistrationResult* result,
                          Associations* associations) {
-  const PointList normals = lookupNormals(normal_map, source, state.T, p.threads);
-  const NoiseShapes shapes = makeNoiseShapes(
-      p.surface_anisotropy > 1.0 ? normals : PointList(),
-      usesSamplingModel(p) ? candidateSpread(candidates, p.threads) : std::vector<double>(),
-      state.sigma_squared, p);
+  const ShapeInputs inputs = shapeInputs(normal_map, source, candidates, state.T, p);
+  // The degeneracy check needs the normals even when the noise model does not.
+  const PointList isotropic_normals =
+      inputs.normals.empty() ? lookupNormals(normal_map, source, state.T, p.threads) : PointList();
+  const PointList& normals = inputs.normals.empty() ? isotropic_normals : inputs.normals;
+  const NoiseShapes shapes = makeNoiseShapes(inputs.normals, inputs.spread, state.sigma_squared, p);
   const WeightedCorrespondences correspondences = computeWeightedCorrespondences(
       source, candidates, shapes, state.T, p.nu, state.sigma_squared, p.threads);
   computePoseCovariance(correspondences, state.T, state.sigma_squared, &result->covariance);

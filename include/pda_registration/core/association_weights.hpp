@@ -62,7 +62,8 @@ double weightedObjective(const WeightedCorrespondences& correspondences,
 /// EM update of sigma^2. Fixed shapes (Sigma_j = sigma^2 M_j): the weighted objective at T divided
 /// by d times the number of source points with candidates. Sampling shapes (noise_shapes.hpp):
 /// sigma^2 is the noise across the surface, so the update is the weighted mean squared residual
-/// along the normal over the points that have one (the objective's form when fewer than 10 do).
+/// along the normal over the points that have one (the objective's form when fewer than 10, or
+/// fewer than a tenth of the correspondences, do).
 double estimateSigmaSquared(const WeightedCorrespondences& correspondences,
                             const Eigen::Isometry3d& T_target_source);
 

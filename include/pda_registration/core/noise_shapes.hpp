@@ -8,8 +8,8 @@
 //   Sigma_j = sigma^2 n n^T + max(kappa sigma^2, sigma^2 + s_j^2)(I - n n^T)  (target normal n)
 //   Sigma_j = (sigma^2 + s_j^2) I                                           (no normal known)
 // where s_j^2 = sampling_scale * (the target's local sampling spread around the point, measured
-// on its own candidate set: the mean squared distance of its candidates from their centroid).
-// with kappa = surface_anisotropy. In the shape form Sigma_j = sigma^2 M_j, kappa_j grows as sigma
+// on its own candidate set: the mean squared distance of its candidates from their centroid)
+// and kappa = surface_anisotropy. In the shape form Sigma_j = sigma^2 M_j, kappa_j grows as sigma
 // shrinks (kappa_j >= 1 + s_j^2 / sigma^2): sigma settles on the noise across the surface without
 // the weights starting to reward sample-to-sample coincidences (two scans of one lidar share its
 // azimuth lattice, and a yaw of whole azimuth steps then fits the ground as well as the truth).
@@ -32,7 +32,6 @@ struct NoiseShapes {
   std::vector<double> inverse_kappa;  ///< 1 / kappa_j
   bool sampling = false;              ///< kappa_j follows sigma (changes the sigma^2 update)
 
-  bool isotropic() const { return inverse_kappa.empty(); }
   Point normalAt(size_t j) const { return normal.empty() ? Point::Zero() : normal[j]; }
   double inverseKappaAt(size_t j) const { return inverse_kappa.empty() ? 1.0 : inverse_kappa[j]; }
 };
