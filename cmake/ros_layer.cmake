@@ -7,10 +7,16 @@ target_compile_options(pda_registration_conversions PRIVATE ${PDA_WARNINGS})
 target_link_libraries(pda_registration_conversions pda_registration_core ${catkin_LIBRARIES})
 
 add_library(pda_registration_ros
+  src/ros/alignment_job.cpp
+  src/ros/alignment_output.cpp
   src/ros/alignment_publisher.cpp
+  src/ros/alignment_status.cpp
   src/ros/association_markers.cpp
+  src/ros/dense_map_keeper.cpp
+  src/ros/edge_broadcaster.cpp
   src/ros/initial_transform.cpp
   src/ros/live_parameters.cpp
+  src/ros/map_alignment_intake.cpp
   src/ros/map_alignment_nodelet.cpp
   src/ros/node_settings.cpp
   src/ros/seed_lookup.cpp
