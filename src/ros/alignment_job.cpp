@@ -6,6 +6,11 @@
 #include "pda_registration/ros/seed_lookup.hpp"
 
 namespace pda_registration {
+namespace {
+// How long an alignment waits for the very first dense map to be indexed (a 5M-point map takes a
+// few seconds); later alignments take the newest ready map at once.
+constexpr double kFirstMapTimeout = 30.0;
+}  // namespace
 
 void AlignmentJob::run(const SparseJob& job, const LiveParameters& live) {
   const NodeSettings& settings = *c_.settings;
@@ -23,14 +28,16 @@ void AlignmentJob::run(const SparseJob& job, const LiveParameters& live) {
                    true);
     return;
   }
-  DenseMapKeeper& keeper = *c_.keeper;
-  if (!keeper.haveMap()) {
+  // The newest ready map; only while the first one is being indexed does this wait.
+  const DenseMapKeeper::Borrowed map = c_.keeper->borrow(kFirstMapTimeout);
+  if (!map) {
     c_.log.problem("no dense",
-                   "no dense cloud received yet on " + c_.dense_topic + "; sparse cloud skipped",
+                   "no dense map ready yet (none received on " + c_.dense_topic +
+                       ", or it could not be indexed); sparse cloud skipped",
                    false);
     return;
   }
-  const std::string& dense_frame = keeper.frame();
+  const std::string& dense_frame = map->frame;
   const std::string& sparse_frame = cloud.header.frame_id;
   const Seed seed =
       lookupSeed(*c_.tf_buffer, dense_frame, sparse_frame, cloud.header.stamp,
@@ -59,7 +66,7 @@ void AlignmentJob::run(const SparseJob& job, const LiveParameters& live) {
   const PointList* source_points;
   PdaRegistration* registration;
   if (settings.dense_is_target) {
-    registration = &keeper.registration();
+    registration = &map->registration;
     seed_target_source = seed.T_dense_sparse;
     source_points = &sparse.points;
   } else {
@@ -67,10 +74,11 @@ void AlignmentJob::run(const SparseJob& job, const LiveParameters& live) {
     registration->setParameters(live.registration);
     registration->setTarget(sparse.points);
     seed_target_source = seed.T_dense_sparse.inverse();
-    source_points = &keeper.points();
+    source_points = &map->points;
   }
   registration->setParameters(live.registration);
-  const RegistrationResult result = registration->align(*source_points, seed_target_source,
+  const PointList& aligned_source = *source_points;
+  const RegistrationResult result = registration->align(aligned_source, seed_target_source,
                                                         want_markers ? &associations : nullptr);
   const Verdict verdict = judgeAlignment(result, seed_target_source, live.acceptance);
   c_.status->update([&](AlignmentStatusValues& s) {
@@ -80,6 +88,8 @@ void AlignmentJob::run(const SparseJob& job, const LiveParameters& live) {
     s.last_accepted = verdict.accepted;
     s.indexed_points = result.target_points_used;
     s.target_cropped = result.target_cropped;
+    s.source_points_used = result.source_points_used;
+    s.source_points_received = source_points->size();
     if (verdict.accepted)
       ++s.accepted;
     else

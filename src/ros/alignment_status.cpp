@@ -59,6 +59,13 @@ void AlignmentStatus::fill(diagnostic_updater::DiagnosticStatusWrapper& status,
              s.dense_arrival.isZero() ? -1.0 : (ros::WallTime::now() - s.dense_arrival).toSec());
   status.add("dense map publishers", dense_publishers);
   status.add("indexed target points", s.indexed_points);
+  status.add("index age [s]",
+             s.index_ready.isZero() ? -1.0 : (ros::WallTime::now() - s.index_ready).toSec());
+  status.add("index update time [ms]", s.index_update_ms);
+  status.add("index update", s.index_update);
+  status.add("index updates", s.index_updates);
+  status.add("source points received", s.source_points_received);
+  status.add("source points used", s.source_points_used);
   status.add("target cropped", s.target_cropped);
   status.add("resident memory [MB]", processMemory().resident_mb);
   status.add("sparse clouds received", s.sparse_received);

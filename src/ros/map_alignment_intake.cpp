@@ -1,5 +1,6 @@
 // Intake: the subscriber callbacks only count and queue (one-slot mailbox per input kind, the
-// newest wins); the worker thread takes what is pending and hands it to the keeper and the job.
+// newest wins): dense maps to the keeper's thread, sparse clouds to the worker thread, which hands
+// each to the alignment job.
 #include <malloc.h>
 
 #include "pda_registration/ros/map_alignment_nodelet.hpp"
@@ -8,7 +9,7 @@ namespace pda_registration {
 
 void MapAlignmentNodelet::denseCallback(const sensor_msgs::PointCloud2ConstPtr& cloud) {
   status_.update([](AlignmentStatusValues& s) { ++s.dense_received; });
-  queue_.putDense(cloud);  // maps are slow; a replaced pending map needs no counting
+  keeper_->put(cloud);  // indexed on the keeper's thread
 }
 
 void MapAlignmentNodelet::sparseCallback(const sensor_msgs::PointCloud2ConstPtr& cloud) {
@@ -33,7 +34,6 @@ void MapAlignmentNodelet::workerLoop() {
   bool has_dense = false, has_sparse = false;
   while (queue_.waitAndTake(&dense, &has_dense, &sparse, &has_sparse)) {
     try {
-      if (has_dense) keeper_->update(dense, liveParameters().registration);
       if (has_sparse) job_->run(sparse, liveParameters());
     } catch (const std::exception& error) {
       reportProblem("internal", std::string("internal error: ") + error.what(), false);

@@ -7,6 +7,7 @@
 namespace pda_registration {
 
 MapAlignmentNodelet::~MapAlignmentNodelet() {
+  if (keeper_) keeper_->stop();  // wakes an alignment waiting for the first map
   queue_.stop();
   if (worker_.joinable()) worker_.join();
 }
@@ -50,7 +51,8 @@ void MapAlignmentNodelet::onInit() {
   const std::string sparse_topic = node.resolveName("sparse_cloud");
   keeper_ = std::make_unique<DenseMapKeeper>(settings_.dense_is_target,
                                              settings_.expected_dense_frame, dense_topic, &status_,
-                                             nodeletLog());
+                                             nodeletLog(),
+                                             [this] { return liveParameters().registration; });
   job_ = std::make_unique<AlignmentJob>(AlignmentJobContext{
       &settings_, tf_buffer_.get(), publisher_.get(), edges_.get(), &status_, keeper_.get(),
       nodeletLog(), sparse_topic, dense_topic});

@@ -31,6 +31,14 @@ struct AlignmentStatusValues {
   size_t dense_points = 0, indexed_points = 0;
   bool target_cropped = false;
   ros::WallTime dense_arrival;
+  // Index keeping (its own thread): when the index in use became ready, what its last update
+  // cost and how it went ("extended", "indexed", ...).
+  ros::WallTime index_ready;
+  double index_update_ms = 0.0;
+  std::string index_update;
+  size_t index_updates = 0;
+  // Source points of the last alignment: as received, and used (after the budget and filters).
+  size_t source_points_received = 0, source_points_used = 0;
 };
 
 class AlignmentStatus {

@@ -1,13 +1,15 @@
 #pragma once
 // pda_registration/MapAlignmentNodelet: keeps the transform between a dense and a sparse map
-// corrected online. Callbacks only queue the newest clouds; a worker thread converts them,
-// indexes the target, looks up the seed on tf, aligns, gates the result and publishes it, so a
-// slow registration never blocks tf, other callbacks or other nodelets of the manager.
+// corrected online. Callbacks only queue the newest clouds. The keeper's thread indexes each new
+// dense map beside the alignments (double-buffered); a worker thread converts each sparse cloud,
+// looks up the seed on tf, aligns it with the newest ready map, gates the result and publishes
+// it, so a slow registration or index build never blocks tf, other callbacks or other nodelets
+// of the manager, and an alignment never waits for an index build.
 //
 // Where each concern lives:
 //   map_alignment_nodelet.cpp   start-up, dynamic_reconfigure, diagnostics hook-up
 //   map_alignment_intake.cpp    subscriber callbacks, the mailbox and the worker loop
-//   dense_map_keeper.*          index keeping (each new dense map)
+//   dense_map_keeper.*          index keeping (each new dense map, on its own thread)
 //   alignment_job.*             one sparse cloud -> seed -> align -> gate
 //   alignment_output.cpp        publishing an accepted estimate; edge_broadcaster.* the tf edge
 //   alignment_status.*          what the diagnostics report
@@ -78,7 +80,7 @@ class MapAlignmentNodelet : public nodelet::Nodelet {
 
   AlignmentStatus status_;
   LatestInputQueue<sensor_msgs::PointCloud2ConstPtr, SparseJob> queue_;
-  std::unique_ptr<DenseMapKeeper> keeper_;  // worker thread only
+  std::unique_ptr<DenseMapKeeper> keeper_;  // indexes dense maps on its own thread
   std::unique_ptr<AlignmentJob> job_;       // worker thread only
   std::thread worker_;
 };
