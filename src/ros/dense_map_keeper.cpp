@@ -130,6 +130,7 @@ void DenseMapKeeper::update(const sensor_msgs::PointCloud2ConstPtr& cloud) {
   size_t appended = 0;
   if (dense_is_target_) {
     slot.registration.setParameters(parameters_());
+    const std::shared_ptr<const TargetIndex> previous = slot.registration.target();
     if (!slot.registration.setTarget(std::move(converted.points))) {
       // The previous map is gone with it: no map until the next one, and a re-publication of
       // this one is tried again rather than skipped as unchanged.
@@ -146,7 +147,10 @@ void DenseMapKeeper::update(const sensor_msgs::PointCloud2ConstPtr& cloud) {
     }
     slot.map_points = slot.registration.targetCloudSize();
     const std::shared_ptr<const TargetIndex> index = slot.registration.target();
-    if (index) {
+    if (index && previous && index->extends(*previous)) {
+      how = "extended";
+      appended = index->size() - previous->size();
+    } else if (index) {
       how = "indexed";
     } else {
       how = "stored; a large map is cropped by the next alignment";
