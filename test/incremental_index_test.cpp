@@ -1,7 +1,8 @@
 // The index that is updated, not rebuilt: queries answer exactly the k nearest points within the
 // radius (checked against brute force, ties included), an index extended by appended points gives
 // the same candidate sets, normal map and registration result as one rebuilt from scratch, and a
-// 1M-point map that grows by 5 % is updated in about the cost of its new points.
+// 1M-point map that grows by 5 % is updated in about the cost of its new points. Also the
+// per-alignment source budget.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -11,6 +12,7 @@
 #include "pda_registration/core/candidate_sets.hpp"
 #include "pda_registration/core/pda_registration.hpp"
 #include "pda_registration/core/perturbation.hpp"
+#include "pda_registration/core/source_budget.hpp"
 #include "pda_registration/core/surface_normals.hpp"
 #include "pda_registration/core/target_index.hpp"
 #include "pda_registration/core/target_map.hpp"
@@ -172,6 +174,48 @@ TEST(TargetMap, OneMillionPointsPlusFivePercentInUnder50Ms) {
     best_ms = std::min(best_ms, update_ms);
   }
   EXPECT_LT(best_ms, 50.0);
+}
+
+TEST(SourceBudget, UniformSubsampleWithinBudget) {
+  // Very uneven density: 90k points in a 10 cm cube (a close wall seen by a lidar) and 10k
+  // spread over 4 x 4 m around it.
+  std::mt19937 random(3);
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  PointList cloud;
+  for (int i = 0; i < 90000; ++i) cloud.emplace_back(0.1 * unit(random), 0.1 * unit(random), 0.1 * unit(random));
+  for (int i = 0; i < 10000; ++i) cloud.emplace_back(4.0 * unit(random) - 2.0, 4.0 * unit(random) - 2.0, 0.2 * unit(random));
+  std::shuffle(cloud.begin(), cloud.end(), random);
+  EXPECT_TRUE(applySourceBudget(cloud, 0).empty());       // no budget
+  EXPECT_TRUE(applySourceBudget(cloud, 200000).empty());  // within budget: use as is
+  for (const size_t budget : {size_t(1000), size_t(5000), size_t(30000)}) {
+    const PointList kept = applySourceBudget(cloud, budget);
+    EXPECT_LE(kept.size(), budget);
+    EXPECT_GE(kept.size(), budget * 9 / 10);
+    // Spatially uniform, not uniform in the list: most kept points come from the spread-out
+    // part (10 % of the input), which a random or strided subsample would keep 10 % of.
+    size_t spread = 0;
+    for (const Point& p : kept) spread += (p.array() > 0.1).any() || (p.array() < 0.0).any();
+    EXPECT_GT(static_cast<double>(spread), 0.3 * static_cast<double>(kept.size()))
+        << "budget " << budget;
+    // Every kept point is an input point.
+    const TargetIndex index(cloud);
+    for (size_t i = 0; i < kept.size(); i += 7) {
+      size_t found;
+      double d;
+      ASSERT_EQ(index.nearestWithinRadius(kept[i], 1, 1e-9, &found, &d), 1u);
+    }
+  }
+}
+
+TEST(SourceBudget, ParameterIsValidated) {
+  RegistrationParameters p;
+  EXPECT_EQ(validateParameters(p), "");  // 0: no budget
+  p.max_source_points = 30000;
+  EXPECT_EQ(validateParameters(p), "");
+  p.max_source_points = -1;
+  EXPECT_NE(validateParameters(p).find("max_source_points"), std::string::npos);
+  p.max_source_points = p.min_correspondences - 1;
+  EXPECT_NE(validateParameters(p).find("max_source_points"), std::string::npos);
 }
 
 }  // namespace

@@ -1,6 +1,9 @@
 #include "pda_registration/ros/alignment_job.hpp"
 
+#include <algorithm>
+
 #include "pda_registration/core/alignment_gate.hpp"
+#include "pda_registration/core/source_budget.hpp"
 #include "pda_registration/ros/input_checks.hpp"
 #include "pda_registration/ros/point_cloud_conversion.hpp"
 #include "pda_registration/ros/seed_lookup.hpp"
@@ -77,7 +80,10 @@ void AlignmentJob::run(const SparseJob& job, const LiveParameters& live) {
     source_points = &map->points;
   }
   registration->setParameters(live.registration);
-  const PointList& aligned_source = *source_points;
+  // Beyond the source budget, a spatially uniform subsample is aligned (source_budget.hpp).
+  const PointList budgeted = applySourceBudget(
+      *source_points, static_cast<size_t>(std::max(live.registration.max_source_points, 0)));
+  const PointList& aligned_source = budgeted.empty() ? *source_points : budgeted;
   const RegistrationResult result = registration->align(aligned_source, seed_target_source,
                                                         want_markers ? &associations : nullptr);
   const Verdict verdict = judgeAlignment(result, seed_target_source, live.acceptance);
