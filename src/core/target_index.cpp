@@ -80,20 +80,33 @@ struct TargetIndex::Tree {
   std::vector<Node> nodes;
   Point box_min = Point::Zero(), box_max = Point::Zero();
 
+  // Built on a contiguous copy of the points with their indices (the partitioning moves them
+  // in memory order, not through the index), then only the indices are kept.
+  struct Entry {
+    Point p;
+    uint32_t index;
+  };
+
   Tree(const PointList& points, size_t first, size_t last) : begin(first), end(last) {
     if (last > std::numeric_limits<uint32_t>::max()) throw std::length_error("target too large");
-    order.resize(last - first);
-    for (size_t i = 0; i < order.size(); ++i) order[i] = static_cast<uint32_t>(first + i);
-    nodes.reserve(2 * order.size() / kLeafSize + 2);
-    build(points, 0, static_cast<uint32_t>(order.size()), &box_min, &box_max);
+    std::vector<Entry> entries(last - first);
+    for (size_t i = 0; i < entries.size(); ++i) {
+      entries[i].p = points[first + i];
+      entries[i].index = static_cast<uint32_t>(first + i);
+    }
+    nodes.reserve(2 * entries.size() / kLeafSize + 2);
+    build(&entries, 0, static_cast<uint32_t>(entries.size()), &box_min, &box_max);
+    order.resize(entries.size());
+    for (size_t i = 0; i < entries.size(); ++i) order[i] = entries[i].index;
   }
 
-  uint32_t build(const PointList& points, uint32_t lo, uint32_t hi, Point* mn, Point* mx) {
+  uint32_t build(std::vector<Entry>* entries, uint32_t lo, uint32_t hi, Point* mn, Point* mx) {
+    std::vector<Entry>& e = *entries;
     Point bmin = Point::Constant(std::numeric_limits<double>::infinity());
     Point bmax = -bmin;
     for (uint32_t i = lo; i < hi; ++i) {
-      bmin = bmin.cwiseMin(points[order[i]]);
-      bmax = bmax.cwiseMax(points[order[i]]);
+      bmin = bmin.cwiseMin(e[i].p);
+      bmax = bmax.cwiseMax(e[i].p);
     }
     *mn = bmin;
     *mx = bmax;
@@ -106,12 +119,22 @@ struct TargetIndex::Tree {
       nodes[id].last = hi;
       return id;
     }
-    const uint32_t mid = lo + (hi - lo) / 2;
-    std::nth_element(order.begin() + lo, order.begin() + mid, order.begin() + hi,
-                     [&](uint32_t a, uint32_t b) { return points[a][axis] < points[b][axis]; });
+    // Split at the middle of the box (one pass); a split leaving less than a quarter on one
+    // side falls back to the median, so the depth stays logarithmic.
+    const double middle = 0.5 * (bmin[axis] + bmax[axis]);
+    uint32_t mid = static_cast<uint32_t>(
+        std::partition(e.begin() + lo, e.begin() + hi,
+                       [axis, middle](const Entry& a) { return a.p[axis] < middle; }) -
+        e.begin());
+    const uint32_t quarter = (hi - lo) / 4;
+    if (mid < lo + quarter || mid > hi - quarter) {
+      mid = lo + (hi - lo) / 2;
+      std::nth_element(e.begin() + lo, e.begin() + mid, e.begin() + hi,
+                       [axis](const Entry& a, const Entry& b) { return a.p[axis] < b.p[axis]; });
+    }
     Point lmin, lmax, rmin, rmax;
-    const uint32_t left = build(points, lo, mid, &lmin, &lmax);
-    const uint32_t right = build(points, mid, hi, &rmin, &rmax);
+    const uint32_t left = build(entries, lo, mid, &lmin, &lmax);
+    const uint32_t right = build(entries, mid, hi, &rmin, &rmax);
     Node& node = nodes[id];
     node.first = left;
     node.last = right;

@@ -1,6 +1,9 @@
 #include "pda_registration/ros/dense_map_keeper.hpp"
 
 #include <malloc.h>
+#include <sys/resource.h>
+#include <sys/syscall.h>
+#include <unistd.h>
 
 #include <chrono>
 #include <cstdio>
@@ -66,6 +69,11 @@ void DenseMapKeeper::giveBack(DenseMapSlot* slot) {
 }
 
 void DenseMapKeeper::loop() {
+  // Indexing is background work: at a lower priority (nice +10, this thread only) it yields the
+  // CPU to the alignments, whose latency is what users see; the diagnostics show the index age.
+  if (setpriority(PRIO_PROCESS, static_cast<id_t>(syscall(SYS_gettid)), 10) != 0) {
+    log_.info("could not lower the priority of the indexing thread; it competes with alignments");
+  }
   sensor_msgs::PointCloud2ConstPtr dense;
   int unused;
   bool has_dense = false, has_unused = false;
