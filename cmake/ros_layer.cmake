@@ -37,3 +37,9 @@ add_executable(pda_latency_probe src/tools/pda_latency_probe.cpp)
 target_compile_options(pda_latency_probe PRIVATE ${PDA_WARNINGS})
 target_link_libraries(pda_latency_probe pda_registration_ros pda_registration_tools ${catkin_LIBRARIES})
 install(TARGETS pda_latency_probe RUNTIME DESTINATION ${CATKIN_PACKAGE_BIN_DESTINATION})
+
+# Latency while the dense map grows like a SLAM map (scripts/measure_latency --growing).
+add_executable(pda_growing_probe src/tools/pda_growing_probe.cpp)
+target_compile_options(pda_growing_probe PRIVATE ${PDA_WARNINGS})
+target_link_libraries(pda_growing_probe pda_registration_ros pda_registration_tools ${catkin_LIBRARIES})
+install(TARGETS pda_growing_probe RUNTIME DESTINATION ${CATKIN_PACKAGE_BIN_DESTINATION})

@@ -216,13 +216,15 @@ std::shared_ptr<const TargetIndex> TargetIndex::extended(
     index->trees_.push_back(
         std::make_shared<const Tree>(index->points_, start, index->points_.size()));
   }
-  // Binary-counter merging: a tree at least half as large as the one before it is merged with it
-  // (one tree over both ranges), so sizes at least double towards the front.
+  // Binary-counter merging: a tree as large as the one before it is merged with it (one tree
+  // over both ranges), so sizes strictly grow towards the front: O(log n) trees, each point
+  // re-indexed O(log n) times over the map's growth, and the first tree rebuilt only when the
+  // points after it outnumber it (the map doubled).
   auto& trees = index->trees_;
   while (trees.size() >= 2) {
     const Tree& last = *trees[trees.size() - 1];
     const Tree& before = *trees[trees.size() - 2];
-    if (2 * (last.end - last.begin) < before.end - before.begin) break;
+    if (last.end - last.begin < before.end - before.begin) break;
     index->last_indexed_ += before.end - before.begin;  // its points are indexed again
     auto merged = std::make_shared<const Tree>(index->points_, before.begin, last.end);
     trees.pop_back();

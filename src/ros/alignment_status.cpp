@@ -62,6 +62,7 @@ void AlignmentStatus::fill(diagnostic_updater::DiagnosticStatusWrapper& status,
   status.add("index age [s]",
              s.index_ready.isZero() ? -1.0 : (ros::WallTime::now() - s.index_ready).toSec());
   status.add("index update time [ms]", s.index_update_ms);
+  status.add("index update CPU time [ms]", s.index_update_cpu_ms);
   status.add("index update", s.index_update);
   status.add("index updates", s.index_updates);
   status.add("source points received", s.source_points_received);

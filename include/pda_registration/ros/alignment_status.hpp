@@ -34,7 +34,7 @@ struct AlignmentStatusValues {
   // Index keeping (its own thread): when the index in use became ready, what its last update
   // cost and how it went ("extended", "indexed", ...).
   ros::WallTime index_ready;
-  double index_update_ms = 0.0;
+  double index_update_ms = 0.0, index_update_cpu_ms = 0.0;
   std::string index_update;
   size_t index_updates = 0;
   // Source points of the last alignment: as received, and used (after the budget and filters).
