@@ -7,10 +7,16 @@ target_compile_options(pda_registration_conversions PRIVATE ${PDA_WARNINGS})
 target_link_libraries(pda_registration_conversions pda_registration_core ${catkin_LIBRARIES})
 
 add_library(pda_registration_ros
+  src/ros/alignment_job.cpp
+  src/ros/alignment_output.cpp
   src/ros/alignment_publisher.cpp
+  src/ros/alignment_status.cpp
   src/ros/association_markers.cpp
+  src/ros/dense_map_keeper.cpp
+  src/ros/edge_broadcaster.cpp
   src/ros/initial_transform.cpp
   src/ros/live_parameters.cpp
+  src/ros/map_alignment_intake.cpp
   src/ros/map_alignment_nodelet.cpp
   src/ros/node_settings.cpp
   src/ros/seed_lookup.cpp
@@ -31,3 +37,9 @@ add_executable(pda_latency_probe src/tools/pda_latency_probe.cpp)
 target_compile_options(pda_latency_probe PRIVATE ${PDA_WARNINGS})
 target_link_libraries(pda_latency_probe pda_registration_ros pda_registration_tools ${catkin_LIBRARIES})
 install(TARGETS pda_latency_probe RUNTIME DESTINATION ${CATKIN_PACKAGE_BIN_DESTINATION})
+
+# Latency while the dense map grows like a SLAM map (scripts/measure_latency --growing).
+add_executable(pda_growing_probe src/tools/pda_growing_probe.cpp)
+target_compile_options(pda_growing_probe PRIVATE ${PDA_WARNINGS})
+target_link_libraries(pda_growing_probe pda_registration_ros pda_registration_tools ${catkin_LIBRARIES})
+install(TARGETS pda_growing_probe RUNTIME DESTINATION ${CATKIN_PACKAGE_BIN_DESTINATION})

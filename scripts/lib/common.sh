@@ -41,3 +41,30 @@ source_workspace() {
   source "${WORKSPACE}/devel/setup.bash"
   set -u
 }
+
+# wait_until SECONDS WHAT COMMAND...: runs COMMAND every 0.2 s until it succeeds; after SECONDS
+# fails with "timed out after SECONDS s waiting for WHAT". Every wait in the scripts is bounded.
+wait_until() {
+  local limit="$1" what="$2"
+  shift 2
+  local end=$((SECONDS + limit))
+  until "$@" >/dev/null 2>&1; do
+    if ((SECONDS >= end)); then
+      log "error: timed out after ${limit} s waiting for ${what}" >&2
+      return 1
+    fi
+    sleep 0.2
+  done
+}
+
+# stop_process PID [SECONDS]: SIGINT (roslaunch shuts its nodes down cleanly on it), then SIGKILL
+# if PID is still there after SECONDS (default 15); never waits longer.
+stop_process() {
+  local pid="$1" limit="${2:-15}"
+  [[ -n "${pid}" ]] || return 0
+  kill -INT "${pid}" 2>/dev/null || return 0
+  local end=$((SECONDS + limit))
+  while kill -0 "${pid}" 2>/dev/null && ((SECONDS < end)); do sleep 0.2; done
+  kill -KILL "${pid}" 2>/dev/null || true
+  wait "${pid}" 2>/dev/null || true
+}

@@ -58,6 +58,10 @@ std::string validateParameters(const RegistrationParameters& p) {
     error << "degeneracy_threshold must be in [0, 1) (got " << p.degeneracy_threshold << ")";
   else if (p.threads < 1 || p.threads > 256)
     error << "threads must be in [1, 256] (got " << p.threads << ")";
+  else if (p.max_source_points < 0 ||
+           (p.max_source_points > 0 && p.max_source_points < p.min_correspondences))
+    error << "max_source_points must be 0 (no budget) or at least min_correspondences ("
+          << p.min_correspondences << ") (got " << p.max_source_points << ")";
   return error.str();
 }
 

@@ -1,22 +1,14 @@
 #include "pda_registration/core/surface_normals.hpp"
 
 #include <Eigen/Eigenvalues>
+#include <algorithm>
 #include <cmath>
 
 namespace pda_registration {
 namespace {
 
-struct Cell {
-  int64_t x, y, z;
-};
-
-Cell cellOf(const Point& p, double inverse_size) {
-  return {static_cast<int64_t>(std::floor(p.x() * inverse_size)),
-          static_cast<int64_t>(std::floor(p.y() * inverse_size)),
-          static_cast<int64_t>(std::floor(p.z() * inverse_size))};
-}
-
-// 21 bits per axis; far-apart cells that wrap onto one key only blur a normal.
+// 21 bits per axis; far-apart cells that wrap onto one key share an entry (the first one's).
+template <class Cell>
 uint64_t keyOf(const Cell& c) {
   const auto bits = [](int64_t v) { return static_cast<uint64_t>(v) & 0x1FFFFF; };
   return (bits(c.x) << 42) | (bits(c.y) << 21) | bits(c.z);
@@ -24,31 +16,13 @@ uint64_t keyOf(const Cell& c) {
 
 int64_t floorHalf(int64_t v) { return v >= 0 ? v / 2 : -((-v + 1) / 2); }
 
-// First and second moments of a voxel's points, relative to the voxel's own corner so that
-// large coordinates do not cancel catastrophically in the covariance.
-struct Moments {
-  Cell cell{0, 0, 0};
-  double count = 0.0;
-  Eigen::Vector3d sum = Eigen::Vector3d::Zero();
-  Eigen::Matrix3d outer = Eigen::Matrix3d::Zero();
-
-  // Adds moments taken relative to a corner that lies `shift` from this voxel's corner.
-  void add(const Moments& other, const Eigen::Vector3d& shift) {
-    count += other.count;
-    sum += other.sum + other.count * shift;
-    outer += other.outer + other.sum * shift.transpose() + shift * other.sum.transpose() +
-             other.count * shift * shift.transpose();
-  }
-};
-
-using MomentGrid = std::unordered_map<uint64_t, Moments>;
-
 // Planar voxels only: a clear smallest axis and two comparable in-plane axes (a single scan
 // line has one dominant axis and is rejected).
-bool planarNormal(const Moments& m, Eigen::Vector3f* normal) {
-  if (m.count < 5.0) return false;
-  const Eigen::Vector3d mean = m.sum / m.count;
-  const Eigen::Matrix3d covariance = m.outer / m.count - mean * mean.transpose();
+bool planarNormal(double count, const Eigen::Vector3d& sum, const Eigen::Matrix3d& outer,
+                  Eigen::Vector3f* normal) {
+  if (count < 5.0) return false;
+  const Eigen::Vector3d mean = sum / count;
+  const Eigen::Matrix3d covariance = outer / count - mean * mean.transpose();
   Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eigen;
   eigen.computeDirect(covariance);
   const Eigen::Vector3d& e = eigen.eigenvalues();  // ascending
@@ -61,43 +35,96 @@ bool planarNormal(const Moments& m, Eigen::Vector3f* normal) {
 
 SurfaceNormalMap::SurfaceNormalMap(const PointList& points, double finest_voxel_size) {
   if (!(finest_voxel_size > 0.0) || !std::isfinite(finest_voxel_size)) return;
-  // Finest level from the points; each coarser level (twice the size) by merging 8 children.
-  MomentGrid grid;
-  const double inverse_size = 1.0 / finest_voxel_size;
-  for (const Point& p : points) {
-    const Cell c = cellOf(p, inverse_size);
-    Moments& m = grid[keyOf(c)];
+  double size = finest_voxel_size;
+  for (int level = 0; level < kLevels; ++level, size *= 2.0) {
+    levels_.emplace_back();
+    levels_.back().voxel_size = size;
+  }
+  add(points, 0);
+}
+
+void SurfaceNormalMap::add(const PointList& points, size_t from) {
+  if (levels_.empty() || from >= points.size()) return;
+  Level& finest = levels_[0];
+  const double size = finest.voxel_size, inverse_size = 1.0 / size;
+  std::vector<uint64_t> touched;
+  touched.reserve(points.size() - from);
+  for (size_t i = from; i < points.size(); ++i) {
+    const Point& p = points[i];
+    Cell c;
+    c.x = static_cast<int64_t>(std::floor(p.x() * inverse_size));
+    c.y = static_cast<int64_t>(std::floor(p.y() * inverse_size));
+    c.z = static_cast<int64_t>(std::floor(p.z() * inverse_size));
+    const uint64_t key = keyOf(c);
+    Moments& m = finest.moments[key];
     if (m.count == 0.0) m.cell = c;
-    const Eigen::Vector3d local = p - Eigen::Vector3d(c.x, c.y, c.z) * finest_voxel_size;
+    const Eigen::Vector3d local = p - Eigen::Vector3d(c.x, c.y, c.z) * size;
     m.count += 1.0;
     m.sum += local;
     m.outer += local * local.transpose();
+    if (touched.empty() || touched.back() != key) touched.push_back(key);
   }
-  double size = finest_voxel_size;
-  for (int level = 0; level < kLevels; ++level) {
-    Level out;
-    out.voxel_size = size;
-    out.normals.reserve(grid.size());
-    for (const auto& entry : grid) {
-      Eigen::Vector3f normal;
-      if (planarNormal(entry.second, &normal)) out.normals.emplace(entry.first, normal);
-    }
-    levels_.push_back(std::move(out));
-    if (level + 1 == kLevels) break;
+  std::sort(touched.begin(), touched.end());
+  touched.erase(std::unique(touched.begin(), touched.end()), touched.end());
+  refit(0, std::move(touched));
+}
 
-    MomentGrid parents;
-    const double parent_size = 2.0 * size;
-    for (const auto& entry : grid) {
-      const Cell& c = entry.second.cell;
-      const Cell parent{floorHalf(c.x), floorHalf(c.y), floorHalf(c.z)};
-      Moments& m = parents[keyOf(parent)];
-      if (m.count == 0.0) m.cell = parent;
-      const Eigen::Vector3d shift = Eigen::Vector3d(c.x, c.y, c.z) * size -
-                                    Eigen::Vector3d(parent.x, parent.y, parent.z) * parent_size;
-      m.add(entry.second, shift);
+void SurfaceNormalMap::refit(int level, std::vector<uint64_t> keys) {
+  for (; level < kLevels; ++level) {
+    Level& here = levels_[level];
+    for (const uint64_t key : keys) {
+      const Moments& m = here.moments.at(key);
+      Eigen::Vector3f normal;
+      if (planarNormal(m.count, m.sum, m.outer, &normal))
+        here.normals[key] = normal;
+      else
+        here.normals.erase(key);
     }
-    grid.swap(parents);
-    size = parent_size;
+    if (level + 1 == kLevels) break;
+    // The parents of what changed: each re-merged from its eight children in a fixed order, so a
+    // parent's moments do not depend on the order its children were created in.
+    Level& up = levels_[level + 1];
+    std::vector<Cell> parents;
+    parents.reserve(keys.size());
+    for (const uint64_t key : keys) {
+      const Cell& c = here.moments.at(key).cell;
+      Cell parent;
+      parent.x = floorHalf(c.x);
+      parent.y = floorHalf(c.y);
+      parent.z = floorHalf(c.z);
+      parents.push_back(parent);
+    }
+    std::vector<uint64_t> parent_keys;
+    parent_keys.reserve(parents.size());
+    for (const Cell& parent : parents) {
+      const uint64_t parent_key = keyOf(parent);
+      Moments merged;
+      merged.cell = parent;
+      for (int child = 0; child < 8; ++child) {
+        Cell c;
+        c.x = 2 * parent.x + (child & 1);
+        c.y = 2 * parent.y + ((child >> 1) & 1);
+        c.z = 2 * parent.z + ((child >> 2) & 1);
+        const auto it = here.moments.find(keyOf(c));
+        if (it == here.moments.end() || !(it->second.cell == c)) continue;
+        const Moments& m = it->second;
+        const Eigen::Vector3d shift = Eigen::Vector3d(c.x - 2 * parent.x, c.y - 2 * parent.y,
+                                                      c.z - 2 * parent.z) *
+                                      here.voxel_size;
+        merged.count += m.count;
+        merged.sum += m.sum + m.count * shift;
+        merged.outer += m.outer + m.sum * shift.transpose() + shift * m.sum.transpose() +
+                        m.count * shift * shift.transpose();
+      }
+      // A wrapped key already holding another parent keeps the first one (as keys did before).
+      const auto existing = up.moments.find(parent_key);
+      if (existing != up.moments.end() && !(existing->second.cell == parent)) continue;
+      up.moments[parent_key] = merged;
+      parent_keys.push_back(parent_key);
+    }
+    std::sort(parent_keys.begin(), parent_keys.end());
+    parent_keys.erase(std::unique(parent_keys.begin(), parent_keys.end()), parent_keys.end());
+    keys.swap(parent_keys);
   }
 }
 
@@ -109,7 +136,12 @@ size_t SurfaceNormalMap::voxelsWithNormal() const {
 
 Eigen::Vector3d SurfaceNormalMap::normalAt(const Point& p) const {
   for (const Level& level : levels_) {
-    const auto it = level.normals.find(keyOf(cellOf(p, 1.0 / level.voxel_size)));
+    const double inverse_size = 1.0 / level.voxel_size;
+    Cell c;
+    c.x = static_cast<int64_t>(std::floor(p.x() * inverse_size));
+    c.y = static_cast<int64_t>(std::floor(p.y() * inverse_size));
+    c.z = static_cast<int64_t>(std::floor(p.z() * inverse_size));
+    const auto it = level.normals.find(keyOf(c));
     if (it != level.normals.end()) return it->second.cast<double>();
   }
   return Eigen::Vector3d::Zero();

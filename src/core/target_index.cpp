@@ -1,31 +1,31 @@
 #include "pda_registration/core/target_index.hpp"
 
+#include <algorithm>
+#include <atomic>
+#include <cstdint>
+#include <cstring>
 #include <limits>
-#include <nanoflann.hpp>
+#include <stdexcept>
 
 namespace pda_registration {
 namespace {
 
-// nanoflann reads points through this adaptor, so the tree stores indices only.
-struct PointListAdaptor {
-  const PointList* points;
-  size_t kdtree_get_point_count() const { return points->size(); }
-  double kdtree_get_pt(size_t index, size_t dim) const { return (*points)[index][dim]; }
-  template <class BoundingBox>
-  bool kdtree_get_bbox(BoundingBox&) const {
-    return false;
-  }
-};
+constexpr uint32_t kLeafSize = 16;
 
-// A k-NN result set that starts with the radius as its worst distance, so the tree prunes
-// everything beyond the radius from the first node on (a k-NN search followed by a radius
-// filter would visit far more nodes when few points are in range).
+uint64_t newLineage() {
+  static std::atomic<uint64_t> next{1};
+  return next++;
+}
+
+double squaredDistance(const Point& a, const Point& b) {
+  const double dx = a.x() - b.x(), dy = a.y() - b.y(), dz = a.z() - b.z();
+  return dx * dx + dy * dy + dz * dz;
+}
+
+// The k best (squared distance, index) pairs strictly within the radius, in lexicographic order:
+// the same set whatever order the points are offered in.
 class NearestWithinRadius {
  public:
-  using DistanceType = double;
-  using IndexType = size_t;
-  using CountType = size_t;
-
   NearestWithinRadius(size_t capacity, double squared_radius, size_t* indices, double* distances)
       : indices_(indices),
         distances_(distances),
@@ -33,21 +33,26 @@ class NearestWithinRadius {
         squared_radius_(squared_radius) {}
 
   size_t size() const { return count_; }
-  bool full() const { return count_ == capacity_; }
-  double worstDist() const { return full() ? distances_[capacity_ - 1] : squared_radius_; }
+  // Subtrees farther than this cannot hold a better point (equal distances may: they are visited).
+  double bound() const { return count_ == capacity_ ? distances_[capacity_ - 1] : squared_radius_; }
 
-  bool addPoint(double distance, size_t index) {
-    if (distance >= worstDist()) return true;
-    // Insertion sort into the kept prefix: k is small (<= a few dozen).
+  void offer(double distance, size_t index) {
+    if (count_ == capacity_) {
+      const double worst = distances_[capacity_ - 1];
+      if (distance > worst || (distance == worst && index > indices_[capacity_ - 1])) return;
+    } else if (!(distance < squared_radius_)) {
+      return;
+    }
     size_t i = count_ < capacity_ ? count_ : capacity_ - 1;
-    for (; i > 0 && distances_[i - 1] > distance; --i) {
+    for (; i > 0 && (distances_[i - 1] > distance ||
+                     (distances_[i - 1] == distance && indices_[i - 1] > index));
+         --i) {
       distances_[i] = distances_[i - 1];
       indices_[i] = indices_[i - 1];
     }
     distances_[i] = distance;
     indices_[i] = index;
     if (count_ < capacity_) ++count_;
-    return true;
   }
 
  private:
@@ -60,28 +65,179 @@ class NearestWithinRadius {
 
 }  // namespace
 
-struct TargetIndex::KdTree {
-  using Tree =
-      nanoflann::KDTreeSingleIndexAdaptor<nanoflann::L2_Simple_Adaptor<double, PointListAdaptor>,
-                                          PointListAdaptor, 3, size_t>;
-  explicit KdTree(const PointList* points)
-      : adaptor{points}, tree(3, adaptor, nanoflann::KDTreeSingleIndexAdaptorParams(32)) {
-    if (!points->empty()) tree.buildIndex();
+// A kd-tree over points [begin, end) of the index's point list (which it reads at query time, so
+// the same tree serves every index that shares those points). Median splits on the axis of
+// largest spread; each inner node keeps the largest coordinate of its left half and the smallest
+// of its right half on that axis, for the incremental distance bound of the search.
+struct TargetIndex::Tree {
+  struct Node {
+    uint32_t first, last;  // leaf: range in order; inner: children in nodes
+    int axis = -1;         // -1: leaf
+    double low = 0.0, high = 0.0;
+  };
+  size_t begin = 0, end = 0;
+  std::vector<uint32_t> order;  // point indices, leaves' points contiguous
+  std::vector<Node> nodes;
+  Point box_min = Point::Zero(), box_max = Point::Zero();
+
+  // Built on a contiguous copy of the points with their indices (the partitioning moves them
+  // in memory order, not through the index), then only the indices are kept.
+  struct Entry {
+    Point p;
+    uint32_t index;
+  };
+
+  Tree(const PointList& points, size_t first, size_t last) : begin(first), end(last) {
+    if (last > std::numeric_limits<uint32_t>::max()) throw std::length_error("target too large");
+    std::vector<Entry> entries(last - first);
+    for (size_t i = 0; i < entries.size(); ++i) {
+      entries[i].p = points[first + i];
+      entries[i].index = static_cast<uint32_t>(first + i);
+    }
+    nodes.reserve(2 * entries.size() / kLeafSize + 2);
+    build(&entries, 0, static_cast<uint32_t>(entries.size()), &box_min, &box_max);
+    order.resize(entries.size());
+    for (size_t i = 0; i < entries.size(); ++i) order[i] = entries[i].index;
   }
-  PointListAdaptor adaptor;
-  Tree tree;
+
+  uint32_t build(std::vector<Entry>* entries, uint32_t lo, uint32_t hi, Point* mn, Point* mx) {
+    std::vector<Entry>& e = *entries;
+    Point bmin = Point::Constant(std::numeric_limits<double>::infinity());
+    Point bmax = -bmin;
+    for (uint32_t i = lo; i < hi; ++i) {
+      bmin = bmin.cwiseMin(e[i].p);
+      bmax = bmax.cwiseMax(e[i].p);
+    }
+    *mn = bmin;
+    *mx = bmax;
+    const uint32_t id = static_cast<uint32_t>(nodes.size());
+    nodes.emplace_back();
+    int axis;
+    const double spread = (bmax - bmin).maxCoeff(&axis);
+    if (hi - lo <= kLeafSize || !(spread > 0.0)) {
+      nodes[id].first = lo;
+      nodes[id].last = hi;
+      return id;
+    }
+    // Split at the middle of the box (one pass); a split leaving less than a quarter on one
+    // side falls back to the median, so the depth stays logarithmic.
+    const double middle = 0.5 * (bmin[axis] + bmax[axis]);
+    uint32_t mid = static_cast<uint32_t>(
+        std::partition(e.begin() + lo, e.begin() + hi,
+                       [axis, middle](const Entry& a) { return a.p[axis] < middle; }) -
+        e.begin());
+    const uint32_t quarter = (hi - lo) / 4;
+    if (mid < lo + quarter || mid > hi - quarter) {
+      mid = lo + (hi - lo) / 2;
+      std::nth_element(e.begin() + lo, e.begin() + mid, e.begin() + hi,
+                       [axis](const Entry& a, const Entry& b) { return a.p[axis] < b.p[axis]; });
+    }
+    Point lmin, lmax, rmin, rmax;
+    const uint32_t left = build(entries, lo, mid, &lmin, &lmax);
+    const uint32_t right = build(entries, mid, hi, &rmin, &rmax);
+    Node& node = nodes[id];
+    node.first = left;
+    node.last = right;
+    node.axis = axis;
+    node.low = lmax[axis];
+    node.high = rmin[axis];
+    return id;
+  }
+
+  void search(const PointList& points, const Point& q, NearestWithinRadius* result) const {
+    double dists[3];
+    double mindist = 0.0;
+    for (int d = 0; d < 3; ++d) {
+      dists[d] = 0.0;
+      if (q[d] < box_min[d]) dists[d] = (box_min[d] - q[d]) * (box_min[d] - q[d]);
+      if (q[d] > box_max[d]) dists[d] = (q[d] - box_max[d]) * (q[d] - box_max[d]);
+      mindist += dists[d];
+    }
+    if (mindist <= result->bound()) searchNode(points, 0, q, mindist, dists, result);
+  }
+
+  void searchNode(const PointList& points, uint32_t id, const Point& q, double mindist,
+                  double* dists, NearestWithinRadius* result) const {
+    const Node& node = nodes[id];
+    if (node.axis < 0) {
+      for (uint32_t i = node.first; i < node.last; ++i) {
+        const uint32_t index = order[i];
+        const double d = squaredDistance(q, points[index]);
+        if (d <= result->bound()) result->offer(d, index);
+      }
+      return;
+    }
+    const int axis = node.axis;
+    const double diff_low = q[axis] - node.low, diff_high = q[axis] - node.high;
+    uint32_t near, far;
+    double cut;
+    if (diff_low + diff_high < 0.0) {
+      near = node.first;
+      far = node.last;
+      cut = diff_high * diff_high;
+    } else {
+      near = node.last;
+      far = node.first;
+      cut = diff_low * diff_low;
+    }
+    searchNode(points, near, q, mindist, dists, result);
+    const double saved = dists[axis];
+    mindist = mindist + cut - saved;
+    dists[axis] = cut;
+    if (mindist <= result->bound()) searchNode(points, far, q, mindist, dists, result);
+    dists[axis] = saved;
+  }
 };
 
 TargetIndex::TargetIndex(PointList points)
-    : points_(std::move(points)), tree_(std::make_unique<KdTree>(&points_)) {}
+    : points_(std::move(points)), lineage_(newLineage()), last_indexed_(points_.size()) {
+  if (!points_.empty()) trees_.push_back(std::make_shared<const Tree>(points_, 0, points_.size()));
+}
 
 TargetIndex::~TargetIndex() = default;
+
+bool TargetIndex::sharesPrefix(const PointList& points) const {
+  if (points.size() < points_.size()) return false;
+  // Bitwise: the same bytes (an exact copy) is what sharing means here.
+  return points_.empty() ||
+         std::memcmp(points.data(), points_.data(), points_.size() * sizeof(Point)) == 0;
+}
+
+std::shared_ptr<const TargetIndex> TargetIndex::extended(
+    const std::shared_ptr<const TargetIndex>& previous, PointList points) {
+  std::shared_ptr<TargetIndex> index(new TargetIndex());
+  index->points_ = std::move(points);
+  const bool reuse = previous && previous->size() <= index->points_.size();
+  if (reuse) index->trees_ = previous->trees_;
+  index->lineage_ = reuse ? previous->lineage_ : newLineage();
+  const size_t start = reuse ? previous->size() : 0;
+  index->last_indexed_ = index->points_.size() - start;
+  if (start < index->points_.size()) {
+    index->trees_.push_back(
+        std::make_shared<const Tree>(index->points_, start, index->points_.size()));
+  }
+  // Binary-counter merging: a tree as large as the one before it is merged with it (one tree
+  // over both ranges), so sizes strictly grow towards the front: O(log n) trees, each point
+  // re-indexed O(log n) times over the map's growth, and the first tree rebuilt only when the
+  // points after it outnumber it (the map doubled).
+  auto& trees = index->trees_;
+  while (trees.size() >= 2) {
+    const Tree& last = *trees[trees.size() - 1];
+    const Tree& before = *trees[trees.size() - 2];
+    if (last.end - last.begin < before.end - before.begin) break;
+    index->last_indexed_ += before.end - before.begin;  // its points are indexed again
+    auto merged = std::make_shared<const Tree>(index->points_, before.begin, last.end);
+    trees.pop_back();
+    trees.back() = std::move(merged);
+  }
+  return index;
+}
 
 size_t TargetIndex::nearestWithinRadius(const Point& query, int k, double radius, size_t* indices,
                                         double* squared_distances) const {
   if (points_.empty() || k <= 0 || !(radius > 0.0)) return 0;
   NearestWithinRadius result(static_cast<size_t>(k), radius * radius, indices, squared_distances);
-  tree_->tree.findNeighbors(result, query.data(), nanoflann::SearchParams());
+  for (const auto& tree : trees_) tree->search(points_, query, &result);
   return result.size();
 }
 

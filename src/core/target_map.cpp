@@ -53,10 +53,86 @@ size_t TargetMap::cloudSize() const {
 }
 
 bool TargetMap::setCloud(PointList points) {
+  const size_t dropped = removeNonFinitePoints(&points);
+  last_update_ = TargetUpdate::kStored;
+  last_appended_ = 0;
+  if (!points.empty() && extend(&points)) {
+    dropped_ = dropped;
+    return true;
+  }
+  // Not an extension: index the new cloud the way the previous one was (if it was).
+  const bool reindex = index_ && have_indexing_;
+  const TargetIndexing indexing = indexing_;
+  const bool was_cropped = cropped_;
+  const AlignedBox region = indexed_region_;
   clear();
-  dropped_ = removeNonFinitePoints(&points);
+  dropped_ = dropped;
   whole_ = std::move(points);
-  return !whole_.empty();
+  if (whole_.empty()) return false;
+  if (reindex && build(indexing, was_cropped ? &region : nullptr)) {
+    last_update_ = TargetUpdate::kReindexed;
+  }
+  return true;
+}
+
+bool TargetMap::extend(PointList* points) {
+  if (!index_ || !have_indexing_ || indexing_.voxel_size > 0.0) return false;
+  const auto start = std::chrono::steady_clock::now();
+  size_t from;  // first new point
+  size_t index_from = index_->size();
+  try {
+    if (!cropped_) {
+      // The whole cloud is indexed: its points are the index's (doubles of the single-precision
+      // copy for a large cloud).
+      if (!index_->sharesPrefix(*points)) return false;
+      from = index_from;
+      if (!compact_.empty()) {
+        for (size_t i = from; i < points->size(); ++i) {
+          compact_.push_back((*points)[i].cast<float>());
+          (*points)[i] = compact_.back().cast<double>();  // as an index of compact_ holds it
+        }
+      }
+      index_ = TargetIndex::extended(index_, std::move(*points));
+      index_owns_cloud_ = compact_.empty();
+      whole_ = PointList();
+    } else {
+      // Cropped: the cloud is the single-precision copy; the crop grows by the new points inside
+      // the indexed region (in cloud order, as a re-crop would keep them).
+      if (points->size() < compact_.size()) return false;
+      for (size_t i = 0; i < compact_.size(); ++i) {
+        if ((*points)[i] != compact_[i].cast<double>()) return false;
+      }
+      from = compact_.size();
+      PointList crop = index_->points();
+      for (size_t i = from; i < points->size(); ++i) {
+        compact_.push_back((*points)[i].cast<float>());
+        const Point q = compact_.back().cast<double>();
+        if (indexed_region_.contains(q)) crop.push_back(q);
+      }
+      index_ = TargetIndex::extended(index_, std::move(crop));
+    }
+  } catch (const std::exception&) {
+    clear();  // out of memory: the caller stores the cloud afresh
+    return false;
+  }
+  addNormals(index_from);
+  last_update_ = TargetUpdate::kExtended;
+  last_appended_ = cloudSize() - from;
+  ++builds_;
+  last_build_ms_ =
+      std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+  return true;
+}
+
+void TargetMap::addNormals(size_t from) {
+  if (!normals_) return;
+  try {
+    // In place when nobody else holds the map (an alignment in flight keeps its own copy alive).
+    if (normals_.use_count() != 1) normals_ = std::make_shared<SurfaceNormalMap>(*normals_);
+    normals_->add(index_->points(), from);
+  } catch (const std::exception&) {
+    normals_ = std::make_shared<SurfaceNormalMap>();  // no normals: isotropic fallback
+  }
 }
 
 void TargetMap::clear() {
@@ -140,10 +216,9 @@ bool TargetMap::build(const TargetIndexing& indexing, const AlignedBox* crop) {
     return false;
   }
   try {
-    normals_ =
-        std::make_shared<const SurfaceNormalMap>(index_->points(), indexing.normal_voxel_size);
+    normals_ = std::make_shared<SurfaceNormalMap>(index_->points(), indexing.normal_voxel_size);
   } catch (const std::exception&) {
-    normals_ = std::make_shared<const SurfaceNormalMap>();  // no normals: isotropic fallback
+    normals_ = std::make_shared<SurfaceNormalMap>();  // no normals: isotropic fallback
   }
   indexing_ = indexing;
   have_indexing_ = true;

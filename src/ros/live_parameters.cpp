@@ -29,6 +29,7 @@ LiveParameters liveParametersFrom(const PdaRegistrationConfig& c) {
   p.min_correspondences = c.min_correspondences;
   p.min_support_fraction = c.min_support_fraction;
   p.threads = c.threads;
+  p.max_source_points = c.max_source_points;
   live.acceptance.min_inlier_fraction = c.min_inlier_fraction;
   live.acceptance.max_correction_translation = c.max_correction_translation;
   live.acceptance.max_correction_rotation = c.max_correction_rotation_deg * M_PI / 180.0;

@@ -5,17 +5,20 @@
 // and the error of the last estimate. With --tile N the dense map is N x N copies of the case's
 // target (the middle one in place; e.g. --tile 7 on room_scan: 5.5M points), and the JSON adds
 // what the nodelet's diagnostics say of it: points indexed, cropping, resident memory. Needs a
-// running roscore and the nodelet (scripts/measure_latency and scripts/measure_scale start both).
+// running roscore and the nodelet (scripts/measure_latency starts both). It cannot hang: the seed
+// goes out once the nodelet's tf listener has connected to /tf_static, a cloud that got no answer
+// within --resend-after seconds is sent again (counted as "resent"), and every wait ends at
+// --timeout with an error naming what it waited for.
 
 #include <diagnostic_msgs/DiagnosticArray.h>
 #include <geometry_msgs/TransformStamped.h>
 #include <ros/ros.h>
 #include <sensor_msgs/PointCloud2.h>
 #include <tf2_eigen/tf2_eigen.h>
-#include <tf2_ros/static_transform_broadcaster.h>
+#include <tf2_msgs/TFMessage.h>
 
 #include <algorithm>
-#include <atomic>
+#include <functional>
 #include <iostream>
 #include <map>
 #include <mutex>
@@ -41,16 +44,17 @@ int fail(const std::string& message) { return reportError("pda_latency_probe", m
 
 int main(int argc, char** argv) {
   ros::init(argc, argv, "pda_latency_probe", ros::init_options::AnonymousName);
-  CommandLine cl({"case", "count", "nodelet", "timeout", "tile"}, {"help"});
+  CommandLine cl({"case", "count", "nodelet", "resend-after", "timeout", "tile"}, {"help"});
   if (!cl.parse(argc, argv)) return fail(cl.error());
   if (cl.has("help") || !cl.has("case")) {
     std::cout << "usage: pda_latency_probe --case DIR [--count 20] [--nodelet pda_registration]"
-                 " [--timeout 60] [--tile N]\n";
+                 " [--timeout 60] [--resend-after 5] [--tile N]\n";
     return cl.has("help") ? 0 : 2;
   }
   int count = 20, tile = 1;
-  double timeout = 60.0;
+  double timeout = 60.0, resend_after = 5.0;
   if (!cl.integer("count", &count, 1, 100000) || !cl.number("timeout", &timeout, 0.1, 3600) ||
+      !cl.number("resend-after", &resend_after, 0.01, 3600) ||
       !cl.integer("tile", &tile, 1, 101)) {
     return fail(cl.error());
   }
@@ -68,17 +72,26 @@ int main(int argc, char** argv) {
   ros::NodeHandle node;
   ros::Publisher dense = node.advertise<sensor_msgs::PointCloud2>("dense_cloud", 1, true);
   ros::Publisher sparse = node.advertise<sensor_msgs::PointCloud2>("sparse_cloud", 1);
-  std::atomic<size_t> received{0};
-  ros::WallTime published;
+  // The seed goes out on our own latched /tf_static publisher, so we can see when the nodelet's
+  // tf listener has connected to it (a latched message reaches a listener only once connected).
+  ros::Publisher tf_static = node.advertise<tf2_msgs::TFMessage>("/tf_static", 1, true);
+  // Each sparse cloud is answered by a ~transform with its stamp; an answer is matched to the
+  // send it answers, so a late answer to a re-sent cloud is never taken for the next one's.
+  std::map<ros::Time, ros::WallTime> sent;  // stamp -> when it was published (this cloud only)
+  bool answered = false;
+  double answer_ms = 0.0;
   std::vector<double> latencies;
   geometry_msgs::TransformStamped last;
   std::mutex mutex;
   ros::Subscriber results = node.subscribe<geometry_msgs::TransformStamped>(
       "/" + nodelet + "/transform", 10, [&](const geometry_msgs::TransformStamped::ConstPtr& m) {
+        const ros::WallTime now = ros::WallTime::now();
         std::lock_guard<std::mutex> lock(mutex);
-        latencies.push_back((ros::WallTime::now() - published).toSec() * 1000.0);
+        const auto it = sent.find(m->header.stamp);
+        if (it == sent.end() || answered) return;
+        answer_ms = (now - it->second).toSec() * 1000.0;
+        answered = true;
         last = *m;
-        ++received;
       });
   // The nodelet's own view (diagnostics, 1 Hz): map size, index size, cropping, memory.
   std::map<std::string, std::string> diagnostics;
@@ -100,18 +113,44 @@ int main(int argc, char** argv) {
   ros::AsyncSpinner spinner(1);
   spinner.start();
 
+  // Every wait below is bounded by the overall --timeout and says what it waited for.
   const ros::WallTime deadline = ros::WallTime::now() + ros::WallDuration(timeout);
-  while (ros::ok() && (sparse.getNumSubscribers() == 0 || results.getNumPublishers() == 0)) {
-    if (ros::WallTime::now() > deadline) return fail("the nodelet did not connect");
-    ros::WallDuration(0.05).sleep();
+  const auto waitFor = [&](const std::function<bool()>& condition, const std::string& what,
+                           std::string* failure) {
+    while (!condition()) {
+      if (!ros::ok()) {
+        *failure = "interrupted while waiting for " + what;
+        return false;
+      }
+      if (ros::WallTime::now() > deadline) {
+        std::ostringstream out;
+        out << "gave up after " << timeout << " s (--timeout) waiting for " << what;
+        *failure = out.str();
+        return false;
+      }
+      ros::WallDuration(0.01).sleep();
+    }
+    return true;
+  };
+  std::string failure;
+  if (!waitFor([&] { return sparse.getNumSubscribers() > 0; },
+               "a subscriber to " + sparse.getTopic() + " (is the nodelet running?)", &failure) ||
+      !waitFor([&] { return results.getNumPublishers() > 0; },
+               "a publisher of " + results.getTopic() + " (is the nodelet named '" + nodelet +
+                   "'?)",
+               &failure) ||
+      !waitFor([&] { return tf_static.getNumSubscribers() > 0; },
+               "the nodelet's tf listener to connect to /tf_static", &failure)) {
+    return fail(failure);
   }
-  tf2_ros::StaticTransformBroadcaster seed_broadcaster;
+  tf2_msgs::TFMessage seed_message;
   geometry_msgs::TransformStamped seed =
       tf2::eigenToTransform(truth * randomPerturbation(3.0, 0.15, 1));
   seed.header.stamp = ros::Time::now();
   seed.header.frame_id = "dense_map";
   seed.child_frame_id = "sparse_map";
-  seed_broadcaster.sendTransform(seed);
+  seed_message.transforms.push_back(seed);
+  tf_static.publish(seed_message);
   std_msgs::Header header;
   header.frame_id = "dense_map";
   header.stamp = ros::Time::now();
@@ -119,28 +158,61 @@ int main(int argc, char** argv) {
   dense.publish(toPointCloud2(target, header));
   // The map is in place (and, unless it is large enough to crop, indexed) before the first
   // sparse cloud: wait until the diagnostics report it.
-  while (diagnostic("dense map points") != std::to_string(target.size())) {
-    if (ros::WallTime::now() > deadline || !ros::ok()) return fail("the dense map never arrived");
-    ros::WallDuration(0.05).sleep();
+  if (!waitFor([&] { return diagnostic("dense map points") == std::to_string(target.size()); },
+               "the nodelet's diagnostics to report the " + std::to_string(target.size()) +
+                   "-point dense map",
+               &failure)) {
+    return fail(failure);
   }
   const double dense_ready_ms = (ros::WallTime::now() - dense_published).toSec() * 1000.0;
 
+  // A cloud that got no answer within --resend-after (dropped by the nodelet, e.g. one that
+  // arrived before the seed) is sent again with a new stamp; its latency counts from the re-send.
   header.frame_id = "sparse_map";
   const sensor_msgs::PointCloud2 cloud = toPointCloud2(source, header);
+  int resent = 0;
   for (int i = 0; i < count && ros::ok(); ++i) {
-    const size_t before = received;
-    sensor_msgs::PointCloud2 message = cloud;
-    message.header.stamp = ros::Time::now();
     {
       std::lock_guard<std::mutex> lock(mutex);
-      published = ros::WallTime::now();
+      sent.clear();
+      answered = false;
     }
-    sparse.publish(message);
-    while (received == before) {
-      if (ros::WallTime::now() > deadline || !ros::ok()) return fail("no ~transform in time");
-      ros::WallDuration(0.001).sleep();
+    bool done = false;
+    while (!done) {
+      sensor_msgs::PointCloud2 message = cloud;
+      message.header.stamp = ros::Time::now();
+      {
+        std::lock_guard<std::mutex> lock(mutex);
+        sent[message.header.stamp] = ros::WallTime::now();
+      }
+      sparse.publish(message);
+      const ros::WallTime resend_at = ros::WallTime::now() + ros::WallDuration(resend_after);
+      while (true) {
+        {
+          std::lock_guard<std::mutex> lock(mutex);
+          if (answered) {
+            latencies.push_back(answer_ms);
+            done = true;
+            break;
+          }
+        }
+        if (!ros::ok()) return fail("interrupted while waiting for a ~transform");
+        if (ros::WallTime::now() > deadline) {
+          std::ostringstream out;
+          out << "gave up after " << timeout << " s (--timeout) waiting for the ~transform of "
+              << "sparse cloud " << i + 1 << " of " << count << " (sent " << resent
+              << " times again, every " << resend_after << " s without an answer)";
+          return fail(out.str());
+        }
+        if (ros::WallTime::now() > resend_at) {
+          ++resent;
+          break;
+        }
+        ros::WallDuration(0.001).sleep();
+      }
     }
   }
+  if (latencies.size() != static_cast<size_t>(count)) return fail("interrupted");
   // Diagnostics published after the last alignment.
   size_t seen;
   {
@@ -162,6 +234,7 @@ int main(int argc, char** argv) {
   const PoseError e = poseError(source, tf2::transformToEigen(last), truth);
   JsonLine json;
   json.add("case", cl.text("case")).add("count", static_cast<int>(latencies.size()));
+  json.add("resent", resent);
   json.add("median_ms", percentile(latencies, 0.5)).add("p95_ms", percentile(latencies, 0.95));
   json.add("max_ms", percentile(latencies, 1.0)).add("first_ms", latencies.front());
   std::ostringstream each;

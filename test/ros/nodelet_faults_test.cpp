@@ -69,6 +69,23 @@ size_t countOf(const std::string& text, const std::string& what) {
   return count;
 }
 
+// The nodelet's count of dense maps it has put in use (diagnostics "index updates"), read from a
+// fresh status; -1 when none comes.
+int indexUpdates(NodeletHarness* harness) {
+  if (!harness->waitForFreshDiagnostics(5.0)) return -1;
+  return std::stoi(harness->diagnosticValue("index updates"));
+}
+
+// Waits (bounded) until a dense map published after `before` updates is in use: maps are indexed
+// on the keeper's own thread, beside the alignments, which use the newest ready map.
+bool waitForIndexUpdatesBeyond(NodeletHarness* harness, int before, double timeout_s) {
+  const ros::WallTime end = ros::WallTime::now() + ros::WallDuration(timeout_s);
+  while (ros::ok() && ros::WallTime::now() < end) {
+    if (indexUpdates(harness) > before) return true;
+  }
+  return false;
+}
+
 class NodeletFaults : public ::testing::Test {
  protected:
   static void SetUpTestSuite() {
@@ -189,8 +206,10 @@ TEST_F(NodeletFaults, B_DenseMapDisappearsAndARebuiltOneComesBack) {
   PointList rebuilt = data_->target;
   for (Point& p : rebuilt) p = shift * p;
   ros::WallDuration(1.0).sleep();  // the new publisher connects
+  const int updates = indexUpdates(harness_);
+  ASSERT_GE(updates, 1);
   harness_->publishDense(rebuilt, "dense_map");
-  ros::WallDuration(1.5).sleep();
+  ASSERT_TRUE(waitForIndexUpdatesBeyond(harness_, updates, 30.0)) << "the rebuilt map never came in use";
   seed_->set(shift * truth * randomPerturbation(3.0, 0.15, 9));
   ros::WallDuration(0.3).sleep();
   expectAligned(ros::Time::now(), shift * truth, "rebuilt map");
@@ -208,9 +227,12 @@ TEST_F(NodeletFaults, B_DenseMapDisappearsAndARebuiltOneComesBack) {
             std::stoi(unchanged_before) + 1);
 
   // Back to the original map for the next test.
+  const int updates_before_original = indexUpdates(harness_);
   harness_->publishDense(data_->target, "dense_map");
   seed_->set(truth * randomPerturbation(3.0, 0.15, 10));
-  ros::WallDuration(1.5).sleep();
+  ASSERT_TRUE(waitForIndexUpdatesBeyond(harness_, updates_before_original, 30.0))
+      << "the original map never came back in use";
+  ros::WallDuration(0.3).sleep();  // the new seed reaches the nodelet's tf buffer
   expectAligned(ros::Time::now(), truth, "original map again");
 }
 

@@ -1,8 +1,9 @@
-// rostest: load. Sparse maps of 100k points at 20 Hz and dense maps of 1M points at 1 Hz (each
-// one different from the last, so every one is re-indexed) for ~duration seconds, built from the
-// real factory_p64 clouds (jittered copies). The nodelet must stay responsive (its tf edge and
-// diagnostics keep flowing), drop stale inputs instead of queueing them (latency stays bounded),
-// keep its memory flat, and publish only estimates on the ground truth. Prints one "stress:"
+// rostest: load. Sparse maps of 100k points at 20 Hz and dense maps of 1M points at 1 Hz (three
+// different maps cycled, so every one is indexed from scratch) for ~duration seconds, built from
+// the real factory_p64 clouds (jittered copies). The nodelet must stay responsive (its tf edge and
+// diagnostics keep flowing), drop stale inputs instead of queueing them, keep latency under
+// 300 ms (median) at 3 alignments a second or more, keep its memory flat, and publish only
+// estimates on the ground truth. Prints one "stress:"
 // line with the figures (RSS at start and end, latency median and p95, drops).
 #include <gtest/gtest.h>
 #include <tf2_msgs/TFMessage.h>
@@ -83,12 +84,14 @@ TEST(NodeletStress, StaysResponsiveDropsStaleInputsAndKeepsMemoryFlat) {
         latencies_ms.push_back((ros::Time::now() - m->header.stamp).toSec() * 1000.0);
       });
 
-  // Two different 1M-point maps, alternated, and one 100k-point sparse map.
+  // Three different 1M-point maps, cycled, and one 100k-point sparse map. Three, not two: the
+  // nodelet keeps two maps (double-buffered) and a map equal to the one two back would be found
+  // already indexed; with three, every map is indexed from scratch (the worst case).
   std_msgs::Header header;
   header.frame_id = "dense_map";
   const size_t extra = 1000000 - data.target.size();
   std::vector<sensor_msgs::PointCloud2> dense_maps;
-  for (uint32_t seed : {1u, 2u}) {
+  for (uint32_t seed : {1u, 2u, 3u}) {
     PointList map = data.target;
     const PointList more = jitteredCopies(data.target, extra, 0.005, seed);
     map.insert(map.end(), more.begin(), more.end());
@@ -106,7 +109,7 @@ TEST(NodeletStress, StaysResponsiveDropsStaleInputsAndKeepsMemoryFlat) {
   std::atomic<size_t> sparse_sent{0}, dense_sent{0};
   std::thread dense_feed([&] {
     for (size_t i = 0; running; ++i) {
-      sensor_msgs::PointCloud2 m = dense_maps[i % 2];
+      sensor_msgs::PointCloud2 m = dense_maps[i % dense_maps.size()];
       m.header.stamp = ros::Time::now();
       harness.publishRaw(m, true);
       ++dense_sent;
@@ -175,9 +178,14 @@ TEST(NodeletStress, StaysResponsiveDropsStaleInputsAndKeepsMemoryFlat) {
   EXPECT_LT(tf_gap, 1.0);
   EXPECT_LT(diagnostics_gap, 3.0);
   // Not queueing: most inputs were dropped as stale, and latency did not pile up.
-  EXPECT_GE(aligned, 3u);
   EXPECT_GT(dropped, 0.5 * static_cast<double>(sparse_sent));
   EXPECT_LT(percentile(latencies, 0.95), 10000.0);
+  // Fast enough for a robot: indexing beside the alignments (which never wait for it) and the
+  // source budget keep the median latency under 300 ms and at least 3 alignments a second, with
+  // every map indexed from scratch (measured 270-275 ms and ~4/s on a 2-core machine shared
+  // with other builds; 1055 ms and 1/s when each alignment waited for its map's index).
+  EXPECT_LE(percentile(latencies, 0.5), 300.0);
+  EXPECT_GE(static_cast<double>(aligned), 3.0 * duration);
   // Flat memory: the second half of the run sits no higher than the first (plus noise). Holding
   // on to every 16 MB dense map would add ~240 MB per 15 s.
   EXPECT_LT(second_half_rss, first_half_rss + 50.0) << "RSS grew:" << rss_series;

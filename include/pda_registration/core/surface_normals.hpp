@@ -1,11 +1,15 @@
 #pragma once
 // Surface normals of the target on voxel grids, for the surface-aware noise model
-// (Sigma_j = sigma^2 (n n^T + kappa (I - n n^T))). Built once per target in one pass over the
-// points: each voxel accumulates its points' first and second moments and its normal is their
-// smallest principal axis, kept only where the voxel is planar. Coarser levels (2x ... 32x the
-// voxel) merge their children's moments, and a lookup takes the finest planar level: fine detail
-// on dense maps, while on ring-structured lidar maps (whose small voxels hold a single scan line)
-// the coarser levels still find the surface.
+// (Sigma_j = sigma^2 (n n^T + kappa (I - n n^T))). Each voxel accumulates its points' first and
+// second moments and its normal is their smallest principal axis, kept only where the voxel is
+// planar. Coarser levels (2x ... 32x the voxel) merge their eight children's moments (in a fixed
+// order), and a lookup takes the finest planar level: fine detail on dense maps, while on
+// ring-structured lidar maps (whose small voxels hold a single scan line) the coarser levels
+// still find the surface.
+//
+// The moments are kept, so points added later (a growing map) update only the voxels they fall in
+// and their parents: add() costs about the new points, and gives exactly the map a build from all
+// the points (in the same order) would.
 
 #include <cstdint>
 #include <unordered_map>
@@ -23,6 +27,9 @@ class SurfaceNormalMap {
   /// finest_voxel_size <= 0 builds an empty map (every lookup says "no normal").
   SurfaceNormalMap(const PointList& points, double finest_voxel_size);
 
+  /// Adds points[from ...] to the map (re-fitting the voxels they touch). No-op on an empty map.
+  void add(const PointList& points, size_t from);
+
   /// The unit normal at p from the finest level whose voxel around p is planar; zero when no
   /// level has one (empty space, a line, a blob, or fewer than 5 points).
   Eigen::Vector3d normalAt(const Point& p) const;
@@ -30,10 +37,26 @@ class SurfaceNormalMap {
   size_t voxelsWithNormal() const;
 
  private:
+  struct Cell {
+    int64_t x = 0, y = 0, z = 0;
+    bool operator==(const Cell& o) const { return x == o.x && y == o.y && z == o.z; }
+  };
+  // First and second moments of a voxel's points, relative to the voxel's own corner so that
+  // large coordinates do not cancel catastrophically in the covariance.
+  struct Moments {
+    Cell cell;
+    double count = 0.0;
+    Eigen::Vector3d sum = Eigen::Vector3d::Zero();
+    Eigen::Matrix3d outer = Eigen::Matrix3d::Zero();
+  };
   struct Level {
     double voxel_size = 0.0;
+    std::unordered_map<uint64_t, Moments> moments;
     std::unordered_map<uint64_t, Eigen::Vector3f> normals;
   };
+  /// Re-fits the given voxels of `level` (keys sorted, unique) and then their parents upwards.
+  void refit(int level, std::vector<uint64_t> keys);
+
   std::vector<Level> levels_;
 };
 

@@ -1,8 +1,19 @@
 #pragma once
-// The target cloud and its kd-tree, built once and reused by every run and every alignment
-// until the target changes (building it dominates the cost of a single k-NN pass).
+// The target cloud and its search index, built once and reused by every run and every alignment
+// until the target changes. The index is a set of kd-trees over consecutive ranges of the points,
+// so a target that grows by appended points (a SLAM map re-published whole with new points at
+// the end) is extended at the cost of its new points: extended() shares the trees of the index it
+// extends and builds one over the new range only (merging small trees as they accumulate, like a
+// binary counter, so there are O(log n) trees).
+//
+// A query answers exactly the k nearest points strictly within the radius, ties in distance
+// broken by the lower point index: the answer depends only on the points and their order, never
+// on how the trees are split, so an extended index and one rebuilt from scratch give identical
+// candidate sets.
 
+#include <cstdint>
 #include <memory>
+#include <vector>
 
 #include "pda_registration/core/point_list.hpp"
 
@@ -10,14 +21,33 @@ namespace pda_registration {
 
 class TargetIndex {
  public:
-  /// Takes the (already filtered) target points and builds the kd-tree.
+  /// Takes the (already filtered) target points and builds the index.
   explicit TargetIndex(PointList points);
   ~TargetIndex();
   TargetIndex(const TargetIndex&) = delete;
   TargetIndex& operator=(const TargetIndex&) = delete;
 
+  /// An index of `points`, whose first previous->size() points are previous->points() (the caller
+  /// checks, e.g. with sharesPrefix()): the trees of `previous` are shared, only the new points
+  /// are indexed. `previous` stays valid and unchanged.
+  static std::shared_ptr<const TargetIndex> extended(
+      const std::shared_ptr<const TargetIndex>& previous, PointList points);
+
+  /// True when this index was made by extended() from `previous` (directly or in steps).
+  bool extends(const TargetIndex& previous) const {
+    return this != &previous && lineage_ == previous.lineage_ && size() >= previous.size();
+  }
+  /// Points whose trees the last extended() built (the new points, plus any merged trees'); the
+  /// whole index after a build from scratch.
+  size_t pointsLastIndexed() const { return last_indexed_; }
+
+  /// True when the first points().size() entries of `points` equal points() exactly.
+  bool sharesPrefix(const PointList& points) const;
+
   const PointList& points() const { return points_; }
   size_t size() const { return points_.size(); }
+  /// How many kd-trees the index holds (1 after a build from scratch).
+  size_t trees() const { return trees_.size(); }
 
   /// Up to k nearest points strictly within `radius` of `query`, nearest first. Writes indices
   /// and squared distances into the arrays (capacity k) and returns how many were found.
@@ -25,9 +55,12 @@ class TargetIndex {
                              double* squared_distances) const;
 
  private:
-  struct KdTree;
+  struct Tree;
+  TargetIndex() = default;
   PointList points_;
-  std::unique_ptr<KdTree> tree_;
+  std::vector<std::shared_ptr<const Tree>> trees_;  // consecutive ranges of points_
+  uint64_t lineage_ = 0;      // shared by an index and those extended from it
+  size_t last_indexed_ = 0;
 };
 
 }  // namespace pda_registration

@@ -52,11 +52,28 @@ struct TargetIndexing {
   }
 };
 
+/// How setCloud() took a new cloud.
+enum class TargetUpdate {
+  kStored,     ///< kept; indexed by the next prepare() (no index to follow yet)
+  kReindexed,  ///< indexed again from scratch, the way the previous cloud was (whole or cropped)
+  kExtended,   ///< the previous cloud is its prefix: only the appended points were indexed
+};
+
 class TargetMap {
  public:
-  /// Replaces the cloud: non-finite points are dropped (and counted); nothing is indexed yet.
-  /// Returns false when no finite point is left.
+  /// Replaces the cloud: non-finite points are dropped (and counted). Returns false when no
+  /// finite point is left. When the previous cloud was indexed:
+  ///  - a cloud that starts with the previous cloud's points (a growing map re-published whole,
+  ///    new points appended) extends the index and the normal map by the new points only
+  ///    (the whole index; or, cropped, by the new points inside the indexed region), unless the
+  ///    target is voxel-downsampled;
+  ///  - any other cloud is indexed right here the same way (whole, or around the same region),
+  ///    so a caller that sets the cloud on a background thread finds it ready.
+  /// Otherwise nothing is indexed yet (prepare() does it).
   bool setCloud(PointList points);
+  TargetUpdate lastUpdate() const { return last_update_; }
+  /// Points appended by the last extension.
+  size_t lastAppended() const { return last_appended_; }
   void clear();
 
   size_t cloudSize() const;
@@ -80,6 +97,10 @@ class TargetMap {
 
  private:
   bool build(const TargetIndexing& indexing, const AlignedBox* crop);
+  /// The extension of setCloud(); false (nothing changed) when `points` does not extend the
+  /// indexed cloud.
+  bool extend(PointList* points);
+  void addNormals(size_t from);
 
   // Small targets keep their points in double precision; when they are indexed without
   // downsampling the index takes them over (index_owns_cloud_), so they are not held twice.
@@ -90,13 +111,15 @@ class TargetMap {
   size_t dropped_ = 0;
 
   std::shared_ptr<const TargetIndex> index_;
-  std::shared_ptr<const SurfaceNormalMap> normals_;
+  std::shared_ptr<SurfaceNormalMap> normals_;  // updated in place when nobody else holds it
   bool have_indexing_ = false;
   TargetIndexing indexing_;
   bool cropped_ = false;
   AlignedBox indexed_region_;  // valid when cropped_
   double last_build_ms_ = 0.0;
   size_t builds_ = 0;
+  TargetUpdate last_update_ = TargetUpdate::kStored;
+  size_t last_appended_ = 0;
 };
 
 }  // namespace pda_registration

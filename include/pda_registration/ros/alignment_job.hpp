@@ -1,0 +1,61 @@
+#pragma once
+// The alignment job: one sparse cloud in, one gated estimate out. Converts the cloud, looks up
+// its seed on tf, aligns it with the dense map the keeper holds, judges the result and, when it
+// is accepted, publishes it (topics and the tf edge). Runs on the nodelet's worker thread.
+
+#include <sensor_msgs/PointCloud2.h>
+#include <tf2_ros/buffer.h>
+
+#include <string>
+
+#include "pda_registration/core/associations.hpp"
+#include "pda_registration/core/pda_registration.hpp"
+#include "pda_registration/ros/alignment_publisher.hpp"
+#include "pda_registration/ros/alignment_status.hpp"
+#include "pda_registration/ros/dense_map_keeper.hpp"
+#include "pda_registration/ros/edge_broadcaster.hpp"
+#include "pda_registration/ros/live_parameters.hpp"
+#include "pda_registration/ros/node_settings.hpp"
+
+namespace pda_registration {
+
+struct SparseJob {
+  sensor_msgs::PointCloud2ConstPtr cloud;
+  ros::WallTime received;
+};
+
+/// What the job uses; all owned by the nodelet and alive as long as the job.
+struct AlignmentJobContext {
+  const NodeSettings* settings;
+  const tf2_ros::Buffer* tf_buffer;
+  AlignmentPublisher* publisher;
+  EdgeBroadcaster* edges;
+  AlignmentStatus* status;
+  DenseMapKeeper* keeper;
+  NodeletLog log;
+  std::string sparse_topic, dense_topic;
+};
+
+class AlignmentJob {
+ public:
+  explicit AlignmentJob(AlignmentJobContext context) : c_(std::move(context)) {}
+
+  void run(const SparseJob& job, const LiveParameters& live);
+
+ private:
+  struct Accepted {
+    const sensor_msgs::PointCloud2* cloud;
+    const std::string* dense_frame;
+    const RegistrationResult* result;
+    const PointList* source;
+    const Associations* associations;  // null: nobody watches the markers
+    const LiveParameters* live;
+  };
+  /// ~transform, ~pose, ~aligned_cloud, ~associations and the tf edge (alignment_output.cpp).
+  void publish(const Accepted& accepted);
+
+  AlignmentJobContext c_;
+  PdaRegistration sparse_target_;  // the registration when the sparse cloud is the target
+};
+
+}  // namespace pda_registration

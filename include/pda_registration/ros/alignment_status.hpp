@@ -1,0 +1,70 @@
+#pragma once
+// What the nodelet's diagnostics report: counters, the last result, the last problem and the
+// dense map in use. Written by the callbacks and the worker threads, read by the 1 Hz
+// diagnostics; every access goes through one mutex.
+
+#include <diagnostic_updater/DiagnosticStatusWrapper.h>
+#include <ros/time.h>
+
+#include <map>
+#include <mutex>
+#include <string>
+
+#include "pda_registration/core/registration_result.hpp"
+#include "pda_registration/ros/seed_lookup.hpp"
+
+namespace pda_registration {
+
+struct AlignmentStatusValues {
+  size_t sparse_received = 0, dense_received = 0, dense_unchanged = 0;
+  size_t dropped_stale = 0, dropped_throttled = 0;
+  size_t input_errors = 0, missing_seed = 0;
+  size_t aligned = 0, accepted = 0, rejected = 0;
+  bool have_result = false, last_accepted = false;
+  RegistrationResult last_result;
+  SeedSource last_seed = SeedSource::kNone;
+  std::string last_problem;  // the latest rejection or input error, for the WARN status
+  double last_latency_ms = 0.0;
+  ros::Time last_problem_time;
+  // The dense map in use: its size, when it arrived (wall clock: sim time may jump back or
+  // stand still), and the size of the current (possibly cropped) index.
+  size_t dense_points = 0, indexed_points = 0;
+  bool target_cropped = false;
+  ros::WallTime dense_arrival;
+  // Index keeping (its own thread): when the index in use became ready, what its last update
+  // cost and how it went ("extended", "indexed", ...).
+  ros::WallTime index_ready;
+  double index_update_ms = 0.0, index_update_cpu_ms = 0.0;
+  std::string index_update;
+  size_t index_updates = 0;
+  // Source points of the last alignment: as received, and used (after the budget and filters).
+  size_t source_points_received = 0, source_points_used = 0;
+};
+
+class AlignmentStatus {
+ public:
+  /// Runs `change` on the values under the lock.
+  template <class Change>
+  void update(Change&& change) {
+    std::lock_guard<std::mutex> lock(mutex_);
+    change(values_);
+  }
+
+  /// Records a problem (counted as an input error when `input_error`). Returns true when it
+  /// should be logged: at most one WARN per `kind` every few seconds, so a bad stream cannot
+  /// flood the log while different problems still each get their line.
+  bool recordProblem(const std::string& kind, const std::string& problem, bool input_error);
+
+  /// Fills the diagnostic status; `dense_publishers` is the dense topic's publisher count.
+  void fill(diagnostic_updater::DiagnosticStatusWrapper& status, uint32_t dense_publishers);
+
+ private:
+  bool shouldLog(const std::string& kind);
+
+  std::mutex mutex_;
+  AlignmentStatusValues values_;
+  std::mutex log_mutex_;
+  std::map<std::string, ros::WallTime> last_logged_;
+};
+
+}  // namespace pda_registration

@@ -1,0 +1,117 @@
+#include "pda_registration/ros/alignment_job.hpp"
+
+#include <algorithm>
+
+#include "pda_registration/core/alignment_gate.hpp"
+#include "pda_registration/core/source_budget.hpp"
+#include "pda_registration/ros/input_checks.hpp"
+#include "pda_registration/ros/point_cloud_conversion.hpp"
+#include "pda_registration/ros/seed_lookup.hpp"
+
+namespace pda_registration {
+namespace {
+// How long an alignment waits for the very first dense map to be indexed (a 5M-point map takes a
+// few seconds); later alignments take the newest ready map at once.
+constexpr double kFirstMapTimeout = 30.0;
+}  // namespace
+
+void AlignmentJob::run(const SparseJob& job, const LiveParameters& live) {
+  const NodeSettings& settings = *c_.settings;
+  const sensor_msgs::PointCloud2& cloud = *job.cloud;
+  const std::string frame_problem = frameProblem(cloud, settings.expected_sparse_frame, "sparse");
+  if (!frame_problem.empty()) {
+    c_.log.problem("frame", frame_problem, true);
+    return;
+  }
+  CloudConversion sparse = fromPointCloud2(cloud);
+  if (!sparse.ok()) {
+    c_.log.problem("sparse " + sparse.error.substr(0, 12),
+                   "sparse cloud " + describeCloud(cloud, c_.sparse_topic) +
+                       " refused: " + sparse.error,
+                   true);
+    return;
+  }
+  // The newest ready map; only while the first one is being indexed does this wait.
+  const DenseMapKeeper::Borrowed map = c_.keeper->borrow(kFirstMapTimeout);
+  if (!map) {
+    c_.log.problem("no dense",
+                   "no dense map ready yet (none received on " + c_.dense_topic +
+                       ", or it could not be indexed); sparse cloud skipped",
+                   false);
+    return;
+  }
+  const std::string& dense_frame = map->frame;
+  const std::string& sparse_frame = cloud.header.frame_id;
+  const Seed seed =
+      lookupSeed(*c_.tf_buffer, dense_frame, sparse_frame, cloud.header.stamp,
+                 ros::Duration(settings.tf_timeout),
+                 settings.has_initial_transform ? &settings.initial_transform : nullptr);
+  if (seed.source == SeedSource::kNone) {
+    c_.status->update([](AlignmentStatusValues& s) { ++s.missing_seed; });
+    c_.log.problem("no seed " + sparse_frame,
+                   "no seed for " + describeCloud(cloud, c_.sparse_topic) +
+                       ": tf has no transform from '" + sparse_frame + "' to '" + dense_frame +
+                       "' (" + seed.detail + ") and ~initial_transform is not set",
+                   true);
+    return;
+  }
+  SeedSource previous_seed = SeedSource::kNone;
+  c_.status->update([&](AlignmentStatusValues& s) {
+    previous_seed = s.last_seed;
+    s.last_seed = seed.source;
+  });
+  if (seed.source != previous_seed) c_.log.info(std::string("seeding from ") + toString(seed.source));
+
+  // The core aligns source to target; the output is always dense <- sparse.
+  const bool want_markers = c_.publisher->hasAssociationSubscribers() && live.max_markers > 0;
+  Associations associations;
+  Eigen::Isometry3d seed_target_source;
+  const PointList* source_points;
+  PdaRegistration* registration;
+  if (settings.dense_is_target) {
+    registration = &map->registration;
+    seed_target_source = seed.T_dense_sparse;
+    source_points = &sparse.points;
+  } else {
+    registration = &sparse_target_;
+    registration->setParameters(live.registration);
+    registration->setTarget(sparse.points);
+    seed_target_source = seed.T_dense_sparse.inverse();
+    source_points = &map->points;
+  }
+  registration->setParameters(live.registration);
+  // Beyond the source budget, a spatially uniform subsample is aligned (source_budget.hpp).
+  const PointList budgeted = applySourceBudget(
+      *source_points, static_cast<size_t>(std::max(live.registration.max_source_points, 0)));
+  const PointList& aligned_source = budgeted.empty() ? *source_points : budgeted;
+  const RegistrationResult result = registration->align(aligned_source, seed_target_source,
+                                                        want_markers ? &associations : nullptr);
+  const Verdict verdict = judgeAlignment(result, seed_target_source, live.acceptance);
+  c_.status->update([&](AlignmentStatusValues& s) {
+    ++s.aligned;
+    s.have_result = true;
+    s.last_result = result;
+    s.last_accepted = verdict.accepted;
+    s.indexed_points = result.target_points_used;
+    s.target_cropped = result.target_cropped;
+    s.source_points_used = result.source_points_used;
+    s.source_points_received = source_points->size();
+    if (verdict.accepted)
+      ++s.accepted;
+    else
+      ++s.rejected;
+  });
+  if (!verdict.accepted) {
+    c_.log.problem("rejected",
+                   "alignment rejected, keeping the last good estimate: " + verdict.reason, false);
+    return;
+  }
+  publish({&cloud, &dense_frame, &result, source_points, want_markers ? &associations : nullptr,
+           &live});
+  const double latency_ms = (ros::WallTime::now() - job.received).toSec() * 1000.0;
+  c_.status->update([&](AlignmentStatusValues& s) { s.last_latency_ms = latency_ms; });
+  ROS_DEBUG("aligned in %.0f ms (%d runs, sigma %.4f, inliers %.2f), latency %.0f ms",
+            result.time_ms, result.runs, result.sigma, result.inlier_fraction, latency_ms);
+}
+
+}  // namespace pda_registration
