@@ -21,6 +21,26 @@ std::vector<double> candidateSpread(const CandidateSets& candidates, int threads
   return spread;
 }
 
+double targetThickness(const CandidateSets& candidates, const PointList& normals) {
+  std::vector<double> variances;
+  for (size_t j = 0; j < candidates.sourceCount() && j < normals.size(); ++j) {
+    const size_t begin = candidates.offsets[j], end = candidates.offsets[j + 1];
+    if (end - begin < 3 || !(normals[j].squaredNorm() > 0.0)) continue;
+    double sum = 0.0, squares = 0.0;
+    for (size_t c = begin; c < end; ++c) {
+      const double height = normals[j].dot(candidates.points[c] - candidates.points[begin]);
+      sum += height;
+      squares += height * height;
+    }
+    const double count = static_cast<double>(end - begin);
+    variances.push_back(std::max(0.0, (squares - sum * sum / count) / (count - 1.0)));
+  }
+  if (variances.size() < 10) return 0.0;
+  const auto middle = variances.begin() + static_cast<long>(variances.size() / 2);
+  std::nth_element(variances.begin(), middle, variances.end());
+  return *middle;
+}
+
 bool usesSamplingModel(const RegistrationParameters& p) {
   return p.surface_anisotropy > 1.0 && p.sampling_scale > 0.0;
 }

@@ -112,6 +112,7 @@ void fillInlierStatistics(const PointList& source, const CandidateSets& candidat
 struct ShapeInputs {
   PointList normals;
   std::vector<double> spread;
+  double thickness = 0.0;  // sigma^2's floor from the target's own noise (sampling model)
 };
 
 ShapeInputs shapeInputs(const SurfaceNormalMap& normal_map, const PointList& source,
@@ -119,7 +120,10 @@ ShapeInputs shapeInputs(const SurfaceNormalMap& normal_map, const PointList& sou
                         const RegistrationParameters& p) {
   ShapeInputs inputs;
   if (p.surface_anisotropy > 1.0) inputs.normals = lookupNormals(normal_map, source, T, p.threads);
-  if (usesSamplingModel(p)) inputs.spread = candidateSpread(candidates, p.threads);
+  if (usesSamplingModel(p)) {
+    inputs.spread = candidateSpread(candidates, p.threads);
+    inputs.thickness = targetThickness(candidates, inputs.normals);
+  }
   return inputs;
 }
 
@@ -135,9 +139,10 @@ bool runEm(const PointList& source, const CandidateSets& candidates,
            const SurfaceNormalMap& normal_map, const RegistrationParameters& p, EmState* state,
            bool* settled, int* em_iterations) {
   const bool estimate_sigma = p.sigma_mode == SigmaMode::kEstimated;
-  // A floor keeps the t-weights defined when the clouds match exactly (sigma -> 0).
-  const double sigma_squared_floor = std::pow(1e-6 * p.radius, 2);
   const ShapeInputs inputs = shapeInputs(normal_map, source, candidates, state->T, p);
+  // A floor keeps the t-weights defined when the clouds match exactly (sigma -> 0); the sampling
+  // model's is the target's own thickness about its surface.
+  const double sigma_squared_floor = std::max(std::pow(1e-6 * p.radius, 2), inputs.thickness);
   if (estimate_sigma && state->sigma_squared == 0.0) {
     state->sigma_squared =
         std::max(initialSigmaSquared(source, candidates, state->T), sigma_squared_floor);

@@ -16,8 +16,12 @@ uint64_t keyOf(const Cell& c) {
 
 int64_t floorHalf(int64_t v) { return v >= 0 ? v / 2 : -((-v + 1) / 2); }
 
-// Planar voxels only: a clear smallest axis and two comparable in-plane axes (a single scan
-// line has one dominant axis and is rejected).
+// Planar voxels only: a clear smallest axis, and points that spread over the voxel in both
+// in-plane directions (the second axis at least a tenth of the first in variance, ~1/3 in extent).
+// A lidar scan line thickened by range noise is a thin strip: its "normal" is the normal of the
+// laser's cone, across which two scans of the same sensor at the same pose agree exactly, so
+// taking it for the surface lets sigma collapse onto the sensor's own geometry. It is rejected
+// here and the coarser levels, where several scan lines meet, find the real surface.
 bool planarNormal(double count, const Eigen::Vector3d& sum, const Eigen::Matrix3d& outer,
                   Eigen::Vector3f* normal) {
   if (count < 5.0) return false;
@@ -26,7 +30,7 @@ bool planarNormal(double count, const Eigen::Vector3d& sum, const Eigen::Matrix3
   Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eigen;
   eigen.computeDirect(covariance);
   const Eigen::Vector3d& e = eigen.eigenvalues();  // ascending
-  if (!(e(2) > 0.0) || e(0) > 0.1 * e(1) || e(1) < 0.01 * e(2)) return false;
+  if (!(e(2) > 0.0) || e(0) > 0.1 * e(1) || e(1) < 0.1 * e(2)) return false;
   *normal = eigen.eigenvectors().col(0).normalized().cast<float>();
   return true;
 }

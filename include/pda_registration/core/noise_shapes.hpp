@@ -40,6 +40,15 @@ struct NoiseShapes {
 /// distance of its candidates from their centroid (0 for fewer than two candidates).
 std::vector<double> candidateSpread(const CandidateSets& candidates, int threads);
 
+/// The target's thickness about its surface around the source points: the median, over source
+/// points with a normal and at least three candidates, of the candidates' variance along that
+/// normal (unbiased). 0 when fewer than ten points qualify. sigma^2 models the residual to one
+/// target sample, and that sample carries its own noise about the surface, so sigma^2 cannot be
+/// smaller than this: the sampling model uses it as sigma^2's floor, which keeps the t-weights
+/// from settling on coincidences finer than the target's noise (two scans of one lidar sample
+/// the same cones and beam lines, whose points fit each other far better than the surface).
+double targetThickness(const CandidateSets& candidates, const PointList& normals);
+
 /// True when the parameters ask for the sampling model.
 bool usesSamplingModel(const RegistrationParameters& parameters);
 
