@@ -7,6 +7,7 @@
 #include <limits>
 #include <sstream>
 
+#include "pda_registration/core/alignment_direction.hpp"
 #include "pda_registration/core/association_weights.hpp"
 #include "pda_registration/core/candidate_sets.hpp"
 #include "pda_registration/core/ceres_solver.hpp"
@@ -235,7 +236,19 @@ RegistrationResult PdaRegistration::align(const PointList& source,
   const auto start = std::chrono::steady_clock::now();
   RegistrationResult result;
   try {
+    source_is_denser_ = false;
     result = alignUnchecked(source, T_target_source_initial, associations);
+    // PDA's natural direction failed and the source is the denser cloud: its model may hold the
+    // other way round (alignment_direction.hpp). Kept only if that run converges.
+    if (!result.converged && source_is_denser_) {
+      Associations swapped_associations;
+      RegistrationResult swapped = alignSwapped(source, T_target_source_initial,
+                                                associations ? &swapped_associations : nullptr);
+      if (swapped.converged) {
+        result = swapped;
+        if (associations) *associations = std::move(swapped_associations);
+      }
+    }
   } catch (const std::exception& error) {
     if (associations) *associations = Associations();
     result = RegistrationResult();
@@ -289,8 +302,14 @@ RegistrationResult PdaRegistration::alignUnchecked(const PointList& source_input
     return result;
   }
 
-  // A large target is indexed around the region this source can reach from its seed.
+  // A dense source against a sparse target may have to run the other way round (align()).
+  // A target large enough to crop is a dense map already.
   const TargetIndexing how = indexing();
+  source_is_denser_ = !target_map_.croppingApplies(how) &&
+                      target_map_.prepare(how, AlignedBox()) &&
+                      sourceIsDenser(countInOverlap(target_map_.index()->points(), source, T));
+
+  // A large target is indexed around the region this source can reach from its seed.
   AlignedBox reach;
   if (target_map_.croppingApplies(how)) {
     reach = reachableRegion(source, T, p.crop_max_translation,
@@ -404,6 +423,36 @@ RegistrationResult PdaRegistration::alignUnchecked(const PointList& source_input
            << 100.0 * p.min_support_fraction << " %)";
     result.converged = false;
     result.reason = reason.str();
+  }
+  return result;
+}
+
+RegistrationResult PdaRegistration::alignSwapped(const PointList& source,
+                                                 const Eigen::Isometry3d& T_target_source_initial,
+                                                 Associations* associations) {
+  PdaRegistration swapped(parameters_);
+  RegistrationResult result;
+  if (!swapped.setTarget(source)) {
+    result.T_target_source = T_target_source_initial;
+    result.reason = "the source (the denser cloud, used as the target) could not be indexed";
+    return result;
+  }
+  const std::shared_ptr<const TargetIndex> target = target_map_.index();
+  result = swapped.alignUnchecked(target->points(), T_target_source_initial.inverse(),
+                                  associations);
+  const Eigen::Isometry3d T_source_target = result.T_target_source;
+  result.T_target_source = T_source_target.inverse();
+  result.covariance = invertedPoseCovariance(T_source_target, result.covariance);
+  result.roles_swapped = true;
+  std::swap(result.source_points_used, result.target_points_used);
+  std::swap(result.source_points_dropped, result.target_points_dropped);
+  result.target_points_total = target_map_.cloudSize();
+  result.target_points_dropped = target_map_.droppedPoints();
+  result.target_index_ms = swapped.target_map_.lastBuildMs();
+  // The associations are in the source's frame: express them in the target's, like the result.
+  if (associations) {
+    for (Point& p : associations->source_points) p = result.T_target_source * p;
+    for (Point& p : associations->candidates) p = result.T_target_source * p;
   }
   return result;
 }

@@ -94,6 +94,7 @@ void AlignmentJob::run(const SparseJob& job, const LiveParameters& live) {
     s.last_accepted = verdict.accepted;
     s.indexed_points = result.target_points_used;
     s.target_cropped = result.target_cropped;
+    s.roles_swapped = result.roles_swapped;
     s.source_points_used = result.source_points_used;
     s.source_points_received = source_points->size();
     if (verdict.accepted)

@@ -58,9 +58,14 @@ class PdaRegistration {
   RegistrationResult alignUnchecked(const PointList& source,
                                     const Eigen::Isometry3d& T_target_source_initial,
                                     Associations* associations);
+  /// The target aligned onto `source` (the denser cloud), answered in the usual direction.
+  RegistrationResult alignSwapped(const PointList& source,
+                                  const Eigen::Isometry3d& T_target_source_initial,
+                                  Associations* associations);
 
   RegistrationParameters parameters_;
   TargetMap target_map_;
+  bool source_is_denser_ = false;  // set by alignUnchecked() for align()
 };
 
 }  // namespace pda_registration

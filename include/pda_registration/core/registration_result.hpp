@@ -26,6 +26,10 @@ struct RegistrationResult {
   size_t target_points_used = 0;             ///< target points indexed (after any crop)
   size_t target_points_total = 0;            ///< finite target points kept (before any crop)
   bool target_cropped = false;               ///< the index covers only the source's reach
+  /// The usual direction did not converge and the source is the denser cloud, so the target was
+  /// aligned onto it and the answer inverted (alignment_direction.hpp); the statistics (sigma,
+  /// inliers, candidates) are of that run.
+  bool roles_swapped = false;
   double target_index_ms = 0.0;  ///< time this call spent (re)indexing the target (in time_ms)
   size_t target_points_dropped = 0;          ///< NaN/Inf target points dropped
   size_t source_points_with_candidates = 0;  ///< in the last run

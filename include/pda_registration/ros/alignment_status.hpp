@@ -30,6 +30,7 @@ struct AlignmentStatusValues {
   // stand still), and the size of the current (possibly cropped) index.
   size_t dense_points = 0, indexed_points = 0;
   bool target_cropped = false;
+  bool roles_swapped = false;  ///< the source was the denser cloud: EM ran the other way round
   ros::WallTime dense_arrival;
   // Index keeping (its own thread): when the index in use became ready, what its last update
   // cost and how it went ("extended", "indexed", ...).
