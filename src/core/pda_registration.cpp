@@ -236,11 +236,14 @@ RegistrationResult PdaRegistration::align(const PointList& source,
   const auto start = std::chrono::steady_clock::now();
   RegistrationResult result;
   try {
-    source_is_denser_ = false;
     result = alignUnchecked(source, T_target_source_initial, associations);
     // PDA's natural direction failed and the source is the denser cloud: its model may hold the
-    // other way round (alignment_direction.hpp). Kept only if that run converges.
-    if (!result.converged && source_is_denser_) {
+    // other way round (alignment_direction.hpp). Kept only if that run converges. Only a whole
+    // target is considered (one large enough to crop is a dense map already).
+    const std::shared_ptr<const TargetIndex> target = target_map_.index();
+    if (!result.converged && target && !result.target_cropped &&
+        result.source_points_used >= static_cast<size_t>(parameters_.min_correspondences) &&
+        sourceIsDenser(countInOverlap(target->points(), source, T_target_source_initial))) {
       Associations swapped_associations;
       RegistrationResult swapped = alignSwapped(source, T_target_source_initial,
                                                 associations ? &swapped_associations : nullptr);
@@ -302,14 +305,8 @@ RegistrationResult PdaRegistration::alignUnchecked(const PointList& source_input
     return result;
   }
 
-  // A dense source against a sparse target may have to run the other way round (align()).
-  // A target large enough to crop is a dense map already.
-  const TargetIndexing how = indexing();
-  source_is_denser_ = !target_map_.croppingApplies(how) &&
-                      target_map_.prepare(how, AlignedBox()) &&
-                      sourceIsDenser(countInOverlap(target_map_.index()->points(), source, T));
-
   // A large target is indexed around the region this source can reach from its seed.
+  const TargetIndexing how = indexing();
   AlignedBox reach;
   if (target_map_.croppingApplies(how)) {
     reach = reachableRegion(source, T, p.crop_max_translation,

@@ -18,8 +18,8 @@ namespace pda_registration {
 /// swapped: a swap indexes the source, which only pays off when the densities clearly differ.
 constexpr double kSwapDensityRatio = 2.0;
 
-/// Points of `target` and of `source` (moved by T_target_source) inside the intersection of their
-/// bounding boxes.
+/// Points of `target` and of the finite points of `source` (moved by T_target_source) inside the
+/// intersection of their bounding boxes.
 struct OverlapCounts {
   size_t target = 0;
   size_t source = 0;

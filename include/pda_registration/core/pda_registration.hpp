@@ -65,7 +65,6 @@ class PdaRegistration {
 
   RegistrationParameters parameters_;
   TargetMap target_map_;
-  bool source_is_denser_ = false;  // set by alignUnchecked() for align()
 };
 
 }  // namespace pda_registration

@@ -24,6 +24,10 @@ struct AlignedBox {
   Point max = Point::Constant(-std::numeric_limits<double>::infinity());
 
   bool empty() const { return (min.array() > max.array()).any(); }
+  void extend(const Point& p) {
+    min = min.cwiseMin(p);
+    max = max.cwiseMax(p);
+  }
   bool contains(const Point& p) const {
     return (p.array() >= min.array()).all() && (p.array() <= max.array()).all();
   }
