@@ -80,7 +80,7 @@ void AlignmentJob::run(const SparseJob& job, const LiveParameters& live) {
     source_points = &map->points;
   }
   registration->setParameters(live.registration);
-  // Beyond the source budget, a spatially uniform subsample is aligned (source_budget.hpp).
+  // Beyond the source budget, an unbiased subsample is aligned (source_budget.hpp).
   const PointList budgeted = applySourceBudget(
       *source_points, static_cast<size_t>(std::max(live.registration.max_source_points, 0)));
   const PointList& aligned_source = budgeted.empty() ? *source_points : budgeted;

@@ -21,6 +21,7 @@ std::set<std::string> settingsFlagNames() {
           "rotation-epsilon",
           "min-correspondences",
           "min-support",
+          "max-source",
           "max-iterations",
           "ndt-resolution",
           "ndt-step-size",
@@ -83,6 +84,9 @@ std::string settingsFlagsHelp() {
        << "  --rotation-epsilon E    convergence threshold [rad] (" << p.rotation_epsilon << ")\n"
        << "  --min-support F         fewer inliers than this fraction of the source = not\n"
        << "                          converged (" << p.min_support_fraction << ")\n"
+       << "  --max-source N          align a random subsample of at most N source points, as the\n"
+       << "                          nodelet's max_source_points; 0 = all (" << p.max_source_points
+       << ")\n"
        << "  --min-correspondences N fewer source points with candidates = failure ("
        << p.min_correspondences << ")\n"
        << "  --crop-above N          targets with more points are indexed only around the\n"
@@ -123,6 +127,7 @@ bool readSettingsFlags(CommandLine* cl, MethodSettings* settings,
       !number("rotation-epsilon", &p.rotation_epsilon, 0.0, 3.2) ||
       !integer("min-correspondences", &p.min_correspondences, 3, 100000000) ||
       !number("min-support", &p.min_support_fraction, 0.0, 1.0) ||
+      !integer("max-source", &p.max_source_points, 0, 1000000000) ||
       !integer("max-iterations", &b.max_iterations, 1, 100000) ||
       !number("ndt-resolution", &b.ndt_resolution, 1e-6, 1e6) ||
       !number("ndt-step-size", &b.ndt_step_size, 1e-9, 1e6) ||

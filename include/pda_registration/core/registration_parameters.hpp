@@ -69,8 +69,8 @@ struct RegistrationParameters {
   // --- Execution -----------------------------------------------------------------------------
   int threads =
       1;  ///< worker threads for candidate search and E-step (results do not depend on it)
-  // --- Per-alignment source budget (applied by the caller before align(): the nodelet) ------
-  /// A source of more points is thinned to a spatially uniform subsample of at most this many
+  // --- Per-alignment source budget (applied by the caller before align(): nodelet, tools) ---
+  /// A source of more points is thinned to an unbiased random subsample of this many
   /// (core/source_budget.hpp) so alignment time stays bounded as a sparse map grows; 0 = none.
   int max_source_points = 0;
 };

@@ -1,8 +1,9 @@
 #pragma once
-// The per-alignment source budget: a source of more than `max_points` points is thinned to a
-// spatially uniform subsample of at most `max_points` (one point per cell of a voxel grid sized
-// to hit the budget: the first point of each cell, in input order), so alignment time stays
-// bounded however large the sparse map grows. Dense regions lose points, sparse ones keep theirs.
+// The per-alignment source budget: a source of more than `max_points` points is thinned to an
+// unbiased subsample of `max_points` points (every finite point equally likely, input order kept,
+// fixed seed), so alignment time stays bounded however large the sparse map grows while the
+// objective stays the whole cloud's in expectation. (A spatially uniform subsample re-weights
+// the map towards its sparse parts and cost 2.4 mm on the simulated office.)
 
 #include <cstddef>
 
