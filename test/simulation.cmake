@@ -10,6 +10,12 @@ target_compile_definitions(simulation_test PRIVATE
   PDA_SIMULATE_BINARY="$<TARGET_FILE:pda_simulate>")
 add_dependencies(simulation_test pda_simulate)
 
+# The pose covariance against Monte Carlo and the simulated office's exact ground truth.
+catkin_add_gtest(pose_covariance_test pose_covariance_test.cpp)
+target_compile_options(pose_covariance_test PRIVATE ${PDA_WARNINGS})
+target_link_libraries(pose_covariance_test
+  pda_test_support pda_registration_simulation gtest_main)
+
 # Registration on the simulated outdoor and same-sensor lattice cases (no ROS needed).
 catkin_add_gtest(lattice_registration_test lattice_registration_test.cpp)
 target_compile_options(lattice_registration_test PRIVATE ${PDA_WARNINGS})

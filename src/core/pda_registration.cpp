@@ -184,7 +184,13 @@ void fillFinalStatistics(const PointList& source, const CandidateSets& candidate
   const NoiseShapes shapes = makeNoiseShapes(inputs.normals, inputs.spread, state.sigma_squared, p);
   const WeightedCorrespondences correspondences = computeWeightedCorrespondences(
       source, candidates, shapes, state.T, p.nu, state.sigma_squared, p.threads);
-  computePoseCovariance(correspondences, state.T, state.sigma_squared, &result->covariance);
+  const auto covariance_start = std::chrono::steady_clock::now();
+  PoseCovarianceTerms terms;
+  computePoseCovariance(correspondences, state.T, state.sigma_squared, &result->covariance, &terms);
+  result->covariance_blocks = terms.blocks;
+  result->covariance_ms = std::chrono::duration<double, std::milli>(
+                              std::chrono::steady_clock::now() - covariance_start)
+                              .count();
   fillInlierStatistics(source, candidates, state.T, p.inlier_sigmas * result->sigma, result);
   PointList moved(source.size());
   for (size_t j = 0; j < source.size(); ++j) moved[j] = state.T * source[j];

@@ -1,33 +1,136 @@
 #include "pda_registration/core/pose_covariance.hpp"
 
 #include <Eigen/Cholesky>
+#include <algorithm>
+#include <cmath>
+#include <unordered_map>
+#include <vector>
 
 #include "pda_registration/core/noise_model.hpp"
 #include "pda_registration/core/pose_jacobian.hpp"
 
 namespace pda_registration {
+namespace {
+
+// A score block needs several times more blocks than the 6 pose parameters for the spread of
+// block scores to estimate a 6x6 matrix (21 entries) at all; 40 keeps the small-sample
+// correction B / (B - 6) below 1.18.
+constexpr size_t kMinBlocks = 40;
+// The finest grid: the overlap's diagonal / 64. Coarser grids double the cell edge.
+constexpr int kFinestDivisions = 64;
+
+struct Cell {
+  long long x, y, z;
+  bool operator==(const Cell& other) const {
+    return x == other.x && y == other.y && z == other.z;
+  }
+};
+
+struct CellHash {
+  size_t operator()(const Cell& c) const {
+    return static_cast<size_t>(c.x * 73856093LL ^ c.y * 19349663LL ^ c.z * 83492791LL);
+  }
+};
+
+using CellScores = std::unordered_map<Cell, Vector6d, CellHash>;
+
+long long floorDivide(long long value, long long divisor) {
+  return value >= 0 ? value / divisor : -((-value + divisor - 1) / divisor);
+}
+
+// The same scores summed over cells twice as large along each axis.
+CellScores coarsen(const CellScores& fine) {
+  CellScores coarse;
+  for (const auto& [cell, score] : fine) {
+    const Cell parent{floorDivide(cell.x, 2), floorDivide(cell.y, 2), floorDivide(cell.z, 2)};
+    auto it = coarse.emplace(parent, Vector6d::Zero()).first;
+    it->second += score;
+  }
+  return coarse;
+}
+
+// sum_b g_b g_b^T with the small-sample correction B / (B - 6).
+Matrix6d scoreSpread(const CellScores& cells) {
+  Matrix6d spread = Matrix6d::Zero();
+  for (const auto& entry : cells) spread.noalias() += entry.second * entry.second.transpose();
+  const double blocks = static_cast<double>(cells.size());
+  return blocks / (blocks - 6.0) * spread;
+}
+
+}  // namespace
 
 bool computePoseCovariance(const WeightedCorrespondences& correspondences,
                            const Eigen::Isometry3d& T_target_source, double sigma_squared,
-                           Eigen::Matrix<double, 6, 6>* covariance) {
+                           Eigen::Matrix<double, 6, 6>* covariance,
+                           PoseCovarianceTerms* terms) {
   covariance->setZero();
+  if (terms) *terms = PoseCovarianceTerms();
   if (correspondences.size() < 3 || !(sigma_squared > 0.0)) return false;
+  // Hessian of the EM objective and every point's score (the gradient of its term) at the optimum.
   Matrix6d hessian = Matrix6d::Zero();
+  std::vector<Vector6d> scores(correspondences.size());
+  PointList moved(correspondences.size());
+  Eigen::AlignedBox3d overlap;
   for (size_t i = 0; i < correspondences.size(); ++i) {
+    moved[i] = T_target_source * correspondences.source[i];
     const PoseJacobian jacobian =
         poseJacobian(T_target_source.linear() * correspondences.source[i]);
-    hessian.noalias() += correspondences.weight[i] * jacobian.transpose() *
-                         shapeInverse(correspondences.normal[i], correspondences.inverse_kappa[i]) *
-                         jacobian;
+    const Eigen::Matrix3d shape =
+        shapeInverse(correspondences.normal[i], correspondences.inverse_kappa[i]);
+    const Eigen::Matrix<double, 6, 3> weighted =
+        correspondences.weight[i] * jacobian.transpose() * shape;
+    hessian.noalias() += weighted * jacobian;
+    scores[i] = weighted * (correspondences.target_mean[i] - moved[i]);
+    overlap.extend(moved[i]);
   }
   const Eigen::LDLT<Matrix6d> factorization(hessian);
   if (factorization.info() != Eigen::Success || !factorization.isPositive() ||
       factorization.vectorD().minCoeff() <= 0.0) {
     return false;
   }
-  *covariance = sigma_squared * factorization.solve(Matrix6d::Identity());
+  const Matrix6d hessian_inverse = factorization.solve(Matrix6d::Identity());
+  const Matrix6d model = sigma_squared * hessian_inverse;
+
+  // Structure term: the spread of the scores summed over spatial blocks (a cluster sandwich,
+  // H^-1 (sum_b g_b g_b^T) H^-1). Neighbouring residuals share the model's errors (a surface
+  // sampled a little off, a warped wall, the target's own noise under several source points), so
+  // a block, not a point, is one independent constraint. Blocks as large as the data allows
+  // (at least kMinBlocks of them) catch the longest such correlation.
+  const double finest_edge = overlap.diagonal().norm() / kFinestDivisions;
+  Matrix6d structure = Matrix6d::Zero();
+  size_t blocks = 0;
+  double block_edge = 0.0;
+  if (finest_edge > 0.0) {
+    CellScores cells;
+    for (size_t i = 0; i < moved.size(); ++i) {
+      const Cell cell{static_cast<long long>(std::floor(moved[i].x() / finest_edge)),
+                      static_cast<long long>(std::floor(moved[i].y() / finest_edge)),
+                      static_cast<long long>(std::floor(moved[i].z() / finest_edge))};
+      auto it = cells.emplace(cell, Vector6d::Zero()).first;
+      it->second += scores[i];
+    }
+    for (double edge = finest_edge; cells.size() >= kMinBlocks; edge *= 2.0) {
+      structure = hessian_inverse * scoreSpread(cells) * hessian_inverse;
+      blocks = cells.size();
+      block_edge = edge;
+      cells = coarsen(cells);
+    }
+  }
+  // The two terms overlap (the blocks' spread also holds the white noise the model term counts),
+  // so their sum errs on the safe side, by at most sqrt(2) when the residuals are independent.
+  *covariance = model + structure;
   *covariance = 0.5 * (*covariance + covariance->transpose()).eval();  // exact symmetry
+  if (terms) {
+    terms->model = model;
+    terms->structure = structure;
+    terms->blocks = blocks;
+    terms->block_edge = block_edge;
+  }
   return covariance->allFinite();
+}
+ExpectedError expectedError(const Eigen::Matrix<double, 6, 6>& covariance) {
+  return {std::sqrt(std::max(0.0, covariance.topLeftCorner<3, 3>().trace())),
+          std::sqrt(std::max(0.0, covariance.bottomRightCorner<3, 3>().trace()))};
 }
 
 Eigen::Matrix<double, 6, 6> invertedPoseCovariance(const Eigen::Isometry3d& T,

@@ -3,6 +3,7 @@
 #include <algorithm>
 
 #include "pda_registration/core/alignment_gate.hpp"
+#include "pda_registration/core/pose_covariance.hpp"
 #include "pda_registration/core/source_budget.hpp"
 #include "pda_registration/ros/input_checks.hpp"
 #include "pda_registration/ros/point_cloud_conversion.hpp"
@@ -91,6 +92,10 @@ void AlignmentJob::run(const SparseJob& job, const LiveParameters& live) {
     ++s.aligned;
     s.have_result = true;
     s.last_result = result;
+    s.expected_error = expectedError(c_.settings->dense_is_target
+                                         ? result.covariance
+                                         : invertedPoseCovariance(result.T_target_source,
+                                                                  result.covariance));
     s.last_accepted = verdict.accepted;
     s.indexed_points = result.target_points_used;
     s.target_cropped = result.target_cropped;

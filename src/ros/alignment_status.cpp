@@ -1,5 +1,7 @@
 #include "pda_registration/ros/alignment_status.hpp"
 
+#include <cmath>
+
 #include "pda_registration/core/process_memory.hpp"
 
 namespace pda_registration {
@@ -47,6 +49,9 @@ void AlignmentStatus::fill(diagnostic_updater::DiagnosticStatusWrapper& status,
   const RegistrationResult& r = s.last_result;
   status.add("converged", s.have_result && r.converged);
   status.add("sigma [m]", r.sigma);
+  // What ~pose's covariance expects (1 sigma): how far off the estimate probably is.
+  status.add("expected error [cm]", 100.0 * s.expected_error.translation);
+  status.add("expected error [deg]", s.expected_error.rotation * 180.0 / M_PI);
   status.add("inlier fraction", r.inlier_fraction);
   status.add("runs", r.runs);
   status.add("alignment time [ms]", r.time_ms);

@@ -1,5 +1,7 @@
 #include "pda_registration/tools/case_folder.hpp"
 
+#include <algorithm>
+#include <filesystem>
 #include <fstream>
 
 #include "pda_registration/core/transform_io.hpp"
@@ -25,6 +27,18 @@ bool loadCaseFolder(const std::string& directory, CaseFolder* loaded, std::strin
   return loadCloud(base + "target", &loaded->target, error) &&
          loadCloud(base + "source", &loaded->source, error) &&
          readTransformFile(base + "T_target_source.txt", &loaded->T_target_source, error);
+}
+
+std::vector<std::string> listCaseFolders(const std::string& data) {
+  std::vector<std::string> cases;
+  std::error_code error;
+  for (const auto& entry : std::filesystem::directory_iterator(data, error)) {
+    if (std::filesystem::exists(entry.path() / "T_target_source.txt")) {
+      cases.push_back(entry.path().filename().string());
+    }
+  }
+  std::sort(cases.begin(), cases.end());
+  return cases;
 }
 
 }  // namespace pda_registration

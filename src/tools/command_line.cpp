@@ -7,6 +7,16 @@
 
 namespace pda_registration {
 
+std::vector<std::string> splitList(const std::string& text, char separator) {
+  std::vector<std::string> items;
+  std::istringstream in(text);
+  std::string item;
+  while (std::getline(in, item, separator)) {
+    if (!item.empty()) items.push_back(item);
+  }
+  return items;
+}
+
 bool parseNumber(const std::string& text, double* value, bool allow_infinity) {
   if (text == "inf" || text == "+inf" || text == "infinity") {
     if (!allow_infinity) return false;

@@ -2,6 +2,7 @@
 // one JSON line. Exit codes: 0 converged, 1 ran but did not converge, 2 bad input or usage.
 
 #include <algorithm>
+#include <cmath>
 #include <iostream>
 #include <map>
 #include <sstream>
@@ -9,6 +10,7 @@
 
 #include "pda_registration/core/error_metrics.hpp"
 #include "pda_registration/core/perturbation.hpp"
+#include "pda_registration/core/pose_covariance.hpp"
 #include "pda_registration/core/process_memory.hpp"
 #include "pda_registration/core/transform_io.hpp"
 #include "pda_registration/tools/cloud_io.hpp"
@@ -39,16 +41,6 @@ const char* kUsage =
     "  --help\n";
 
 int usageError(const std::string& message) { return reportError("pda_align", message); }
-
-std::vector<std::string> splitList(const std::string& text) {
-  std::vector<std::string> items;
-  std::istringstream in(text);
-  std::string item;
-  while (std::getline(in, item, ',')) {
-    if (!item.empty()) items.push_back(item);
-  }
-  return items;
-}
 
 }  // namespace
 
@@ -139,6 +131,9 @@ int main(int argc, char** argv) {
     for (int i = 0; i < 6; ++i) diagonal << (i ? "," : "") << r.covariance(i, i);
     diagonal << ']';
     json.addRaw("covariance_diagonal", diagonal.str());
+    const ExpectedError expected = expectedError(r.covariance);
+    json.add("expected_error_m", expected.translation)
+        .add("expected_error_deg", expected.rotation * 180.0 / M_PI);
   } else {
     json.addRaw("runs", "null").addRaw("sigma", "null").addRaw("inlier_fraction", "null");
     json.add("fitness", outcome.fitness);

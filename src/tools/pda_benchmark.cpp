@@ -4,7 +4,6 @@
 // every trial. Exit 2 on bad arguments or unreadable data.
 
 #include <algorithm>
-#include <filesystem>
 #include <fstream>
 #include <iomanip>
 #include <iostream>
@@ -18,6 +17,7 @@
 #include "pda_registration/tools/case_folder.hpp"
 #include "pda_registration/tools/command_line.hpp"
 #include "pda_registration/tools/method_runner.hpp"
+#include "pda_registration/tools/perturbation_levels.hpp"
 #include "pda_registration/tools/settings_flags.hpp"
 #include "pda_registration/tools/statistics.hpp"
 
@@ -42,9 +42,7 @@ const char* kUsage =
     "  PDA and the PCL methods share --radius (ICP/GICP max correspondence distance) and the\n"
     "  voxel sizes; pda_single is PDA with --runs 1 and up to 100 EM iterations.\n";
 
-struct Level {
-  double degrees, metres;
-};
+using Level = PerturbationLevel;
 
 struct Trial {
   std::string case_name, method;
@@ -53,16 +51,6 @@ struct Trial {
   double error, time_ms;
   bool converged;
 };
-
-std::vector<std::string> split(const std::string& text, char separator) {
-  std::vector<std::string> items;
-  std::istringstream in(text);
-  std::string item;
-  while (std::getline(in, item, separator)) {
-    if (!item.empty()) items.push_back(item);
-  }
-  return items;
-}
 
 int fail(const std::string& message) { return reportError("pda_benchmark", message); }
 
@@ -88,32 +76,19 @@ int main(int argc, char** argv) {
     return fail(cl.error());
   }
   std::vector<Level> levels;
-  for (const std::string& item : split(cl.text("levels", "2:0.10,5:0.25,10:0.50"), ',')) {
-    const std::vector<std::string> parts = split(item, ':');
-    double d = 0, m = 0;
-    if (parts.size() != 2 || !parseNumber(parts[0], &d, false) ||
-        !parseNumber(parts[1], &m, false) || d < 0 || m < 0) {
-      return fail("--levels: '" + item + "' is not DEGREES:METRES");
-    }
-    levels.push_back({d, m});
+  std::string bad_level;
+  if (!parsePerturbationLevels(cl.text("levels", "2:0.10,5:0.25,10:0.50"), &levels, &bad_level)) {
+    return fail("--levels: '" + bad_level + "' is not DEGREES:METRES");
   }
   const std::vector<std::string> methods =
-      split(cl.text("methods", "pda_single,pda,icp,gicp,ndt"), ',');
+      splitList(cl.text("methods", "pda_single,pda,icp,gicp,ndt"), ',');
   for (const std::string& m : methods) {
     if (m != "pda_single" && !isKnownMethod(m))
       return fail("--methods: unknown method '" + m + "'");
   }
   const std::string data = cl.text("data");
-  std::vector<std::string> cases = split(cl.text("cases"), ',');
-  if (cases.empty()) {  // every sub-folder that holds a ground truth, in name order
-    std::error_code error;
-    for (const auto& entry : std::filesystem::directory_iterator(data, error)) {
-      if (std::filesystem::exists(entry.path() / "T_target_source.txt")) {
-        cases.push_back(entry.path().filename().string());
-      }
-    }
-    std::sort(cases.begin(), cases.end());
-  }
+  std::vector<std::string> cases = splitList(cl.text("cases"), ',');
+  if (cases.empty()) cases = listCaseFolders(data);
   if (cases.empty()) return fail("no cases found in '" + data + "'");
 
   // Variants of every case: the clouds swapped, the target thinned.

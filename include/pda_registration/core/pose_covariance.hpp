@@ -1,8 +1,16 @@
 #pragma once
-// Covariance of the estimate: the inverse Hessian of the EM objective at the solution,
-// sigma^2 (sum_j W_j J_j^T M_j^-1 J_j)^-1, with M_j the point's noise shape and J_j the Jacobian
-// of the moved source point with respect to (dx, dy, dz, droll, dpitch, dyaw) (pose_jacobian.hpp),
-// the convention of geometry_msgs/PoseWithCovariance.
+// Covariance of the estimate, in the convention of geometry_msgs/PoseWithCovariance: a left
+// perturbation (dx, dy, dz, droll, dpitch, dyaw) of T in the target frame (pose_jacobian.hpp).
+//
+// It is the sum of two terms:
+//  - model: the inverse Hessian of the EM objective, sigma^2 (sum_j W_j J_j^T M_j^-1 J_j)^-1 with
+//    M_j the point's noise shape. It is right only if every residual were independent noise;
+//    alone it was 3-80x smaller than the error actually made.
+//  - structure: a spatial-block sandwich H^-1 (sum_b g_b g_b^T) H^-1 over the gradients g_b of
+//    the objective summed over blocks of the overlap. At the optimum the g_b cancel in total;
+//    how far they disagree is how much the pose rests on regions that want different poses
+//    (correlated residuals: sampling, surface fit, non-rigid distortion).
+// See the README's covariance section for what it is calibrated against (pda_covariance_check).
 
 #include <Eigen/Geometry>
 
@@ -10,10 +18,28 @@
 
 namespace pda_registration {
 
+/// The two terms and the blocks used, for inspection and tests.
+struct PoseCovarianceTerms {
+  Eigen::Matrix<double, 6, 6> model = Eigen::Matrix<double, 6, 6>::Zero();
+  Eigen::Matrix<double, 6, 6> structure = Eigen::Matrix<double, 6, 6>::Zero();
+  size_t blocks = 0;        ///< occupied blocks of the structure term (0: too few, term is zero)
+  double block_edge = 0.0;  ///< [length] their edge
+};
+
 /// Returns false (and a zero matrix) when the Hessian is singular or there is nothing to use.
 bool computePoseCovariance(const WeightedCorrespondences& correspondences,
                            const Eigen::Isometry3d& T_target_source, double sigma_squared,
-                           Eigen::Matrix<double, 6, 6>* covariance);
+                           Eigen::Matrix<double, 6, 6>* covariance,
+                           PoseCovarianceTerms* terms = nullptr);
+
+/// The error a covariance expects, as one number per part: sqrt(trace) of its translation block
+/// [length] and of its rotation block [rad] (for an unbiased estimate, the root mean square of
+/// |t error| and of the rotation angle).
+struct ExpectedError {
+  double translation = 0.0;
+  double rotation = 0.0;
+};
+ExpectedError expectedError(const Eigen::Matrix<double, 6, 6>& covariance);
 
 /// The covariance of T^-1 given the covariance of T (same convention, expressed for the inverse
 /// transform's own parent frame): the first-order propagation through inversion.

@@ -10,6 +10,7 @@
 #include <mutex>
 #include <string>
 
+#include "pda_registration/core/pose_covariance.hpp"
 #include "pda_registration/core/registration_result.hpp"
 #include "pda_registration/ros/seed_lookup.hpp"
 
@@ -22,6 +23,7 @@ struct AlignmentStatusValues {
   size_t aligned = 0, accepted = 0, rejected = 0;
   bool have_result = false, last_accepted = false;
   RegistrationResult last_result;
+  ExpectedError expected_error;  ///< of the last result, as published (dense frame)
   SeedSource last_seed = SeedSource::kNone;
   std::string last_problem;  // the latest rejection or input error, for the WARN status
   double last_latency_ms = 0.0;

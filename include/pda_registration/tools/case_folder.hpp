@@ -5,6 +5,7 @@
 
 #include <Eigen/Geometry>
 #include <string>
+#include <vector>
 
 #include "pda_registration/core/point_list.hpp"
 
@@ -17,5 +18,9 @@ struct CaseFolder {
 
 /// Loads all three files (each cloud as .pcd, else .ply); false with a one-line reason.
 bool loadCaseFolder(const std::string& directory, CaseFolder* loaded, std::string* error);
+
+/// Every sub-folder of `data` that holds a T_target_source.txt, in name order (empty when none or
+/// when `data` cannot be read).
+std::vector<std::string> listCaseFolders(const std::string& data);
 
 }  // namespace pda_registration

@@ -36,6 +36,9 @@ class CommandLine {
   std::string error_;
 };
 
+/// The non-empty items of a separated list ("a,,b" -> a, b).
+std::vector<std::string> splitList(const std::string& text, char separator = ',');
+
 /// Parses one number; "inf" only when allow_infinity. False on trailing junk or NaN.
 bool parseNumber(const std::string& text, double* value, bool allow_infinity);
 

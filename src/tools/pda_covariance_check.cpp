@@ -1,0 +1,176 @@
+// pda_covariance_check: does the reported covariance match the error PDA actually makes? For every
+// case of a data directory, from fixed-seed perturbations of the ground truth, it aligns with PDA
+// and compares the error with the reported standard deviation, sigma = sqrt(trace) of the
+// covariance's translation and rotation blocks. Prints a markdown table of the medians of
+// |error| / sigma over the converged trials (1 is a calibrated covariance; above 1 it is
+// over-confident) and can write every trial as CSV. Exit 2 on bad arguments or unreadable data.
+
+#include <cmath>
+#include <fstream>
+#include <iomanip>
+#include <iostream>
+#include <sstream>
+#include <vector>
+
+#include "pda_registration/core/perturbation.hpp"
+#include "pda_registration/core/pose_covariance.hpp"
+#include "pda_registration/tools/case_folder.hpp"
+#include "pda_registration/tools/command_line.hpp"
+#include "pda_registration/tools/method_runner.hpp"
+#include "pda_registration/tools/perturbation_levels.hpp"
+#include "pda_registration/tools/settings_flags.hpp"
+#include "pda_registration/tools/statistics.hpp"
+
+using namespace pda_registration;
+
+namespace {
+
+const char* kUsage =
+    "usage: pda_covariance_check --data DIR [options]\n"
+    "  DIR holds one folder per case with target.pcd|ply, source.pcd|ply, T_target_source.txt.\n"
+    "  --cases A,B            only these cases (all folders in DIR)\n"
+    "  --levels D:M,...       perturbation levels, degrees:metres (5:0.25)\n"
+    "  --trials N             perturbations per level (5)\n"
+    "  --seed N               first perturbation seed (1)\n"
+    "  --bounds LO:HI         the accepted range of median |error| / sigma (0.5:2)\n"
+    "  --csv FILE             write every trial\n"
+    "  The error is taken in the covariance's own convention: translation t_est - t_true, rotation\n"
+    "  the angle of R_est R_true^T; sigma is sqrt(trace) of the matching 3x3 block.\n";
+
+struct Trial {
+  std::string case_name;
+  PerturbationLevel level;
+  int seed = 0;
+  bool converged = false;
+  double translation_error = 0.0, translation_sigma = 0.0;  // [m]
+  double rotation_error = 0.0, rotation_sigma = 0.0;        // [rad]
+  double covariance_share = 0.0;  // the covariance's time / the alignment's
+};
+
+int fail(const std::string& message) { return reportError("pda_covariance_check", message); }
+
+std::string ratioText(const std::vector<double>& errors, const std::vector<double>& sigmas) {
+  std::vector<double> ratios;
+  for (size_t i = 0; i < errors.size(); ++i) {
+    if (sigmas[i] > 0.0) ratios.push_back(errors[i] / sigmas[i]);
+  }
+  if (ratios.empty()) return "-";
+  std::ostringstream text;
+  text << std::fixed << std::setprecision(2) << median(ratios);
+  return text.str();
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  CommandLine cl =
+      commandLineWithSettings({"data", "cases", "levels", "trials", "seed", "bounds", "csv"}, {});
+  if (!cl.parse(argc, argv)) return fail(cl.error());
+  if (cl.has("help")) {
+    std::cout << kUsage << settingsFlagsHelp();
+    return 0;
+  }
+  if (!cl.has("data")) return fail("--data is required");
+  MethodSettings settings;
+  if (!readSettingsFlags(&cl, &settings)) return fail(cl.error());
+  int trials = 5, first_seed = 1;
+  if (!cl.integer("trials", &trials, 1, 100000) || !cl.integer("seed", &first_seed, 0, 1 << 30)) {
+    return fail(cl.error());
+  }
+  std::vector<PerturbationLevel> levels;
+  std::string bad;
+  if (!parsePerturbationLevels(cl.text("levels", "5:0.25"), &levels, &bad)) {
+    return fail("--levels: '" + bad + "' is not DEGREES:METRES");
+  }
+  const std::vector<std::string> bounds_text = splitList(cl.text("bounds", "0.5:2"), ':');
+  double low = 0.0, high = 0.0;
+  if (bounds_text.size() != 2 || !parseNumber(bounds_text[0], &low, false) ||
+      !parseNumber(bounds_text[1], &high, false) || !(low > 0.0) || !(high >= low)) {
+    return fail("--bounds: '" + cl.text("bounds") + "' is not LO:HI with 0 < LO <= HI");
+  }
+  const std::string data = cl.text("data");
+  std::vector<std::string> cases = splitList(cl.text("cases"), ',');
+  if (cases.empty()) cases = listCaseFolders(data);
+  if (cases.empty()) return fail("no cases found in '" + data + "'");
+
+  std::vector<Trial> all;
+  for (const std::string& name : cases) {
+    CaseFolder loaded;
+    std::string error;
+    if (!loadCaseFolder(data + "/" + name, &loaded, &error)) {
+      return fail("case '" + name + "': " + error);
+    }
+    const Eigen::Isometry3d truth = loaded.T_target_source;
+    for (const PerturbationLevel& level : levels) {
+      for (int t = 0; t < trials; ++t) {
+        Trial trial{name, level, first_seed + t};
+        const Eigen::Isometry3d initial =
+            truth * randomPerturbation(level.degrees, level.metres,
+                                       static_cast<uint64_t>(trial.seed));
+        const RegistrationResult r =
+            runMethod("pda", loaded.target, loaded.source, initial, settings).result;
+        trial.converged = r.converged;
+        trial.covariance_share = r.time_ms > 0.0 ? r.covariance_ms / r.time_ms : 0.0;
+        trial.translation_error = (r.T_target_source.translation() - truth.translation()).norm();
+        trial.rotation_error =
+            Eigen::AngleAxisd(r.T_target_source.linear() * truth.linear().transpose()).angle();
+        const ExpectedError expected = expectedError(r.covariance);
+        trial.translation_sigma = expected.translation;
+        trial.rotation_sigma = expected.rotation;
+        all.push_back(trial);
+        std::cerr << "\r" << name << " " << level.degrees << "deg/" << level.metres << "m trial "
+                  << t + 1 << "/" << trials << "          " << std::flush;
+      }
+    }
+  }
+  std::cerr << "\n";
+
+  if (cl.has("csv")) {
+    std::ofstream csv(cl.text("csv"));
+    csv << "case,level_deg,level_m,seed,converged,translation_error_m,translation_sigma_m,"
+           "rotation_error_rad,rotation_sigma_rad,covariance_time_share\n";
+    for (const Trial& t : all) {
+      csv << t.case_name << ',' << t.level.degrees << ',' << t.level.metres << ',' << t.seed << ','
+          << t.converged << ',' << t.translation_error << ',' << t.translation_sigma << ','
+          << t.rotation_error << ',' << t.rotation_sigma << ',' << t.covariance_share << '\n';
+    }
+    if (!csv) return fail("--csv: cannot write '" + cl.text("csv") + "'");
+  }
+
+  std::cout << "| case | level | converged | |t err| [cm] | sigma_t [cm] | t err / sigma_t | "
+               "|r err| [deg] | sigma_r [deg] | r err / sigma_r | within ["
+            << low << ", " << high << "] | covariance time |\n"
+            << "|---|---|---|---|---|---|---|---|---|---|---|\n";
+  const double kDeg = 180.0 / M_PI;
+  for (const std::string& name : cases) {
+    for (const PerturbationLevel& level : levels) {
+      std::vector<double> te, ts, re, rs, share;
+      for (const Trial& t : all) {
+        if (t.case_name != name || t.level.degrees != level.degrees ||
+            t.level.metres != level.metres || !t.converged)
+          continue;
+        te.push_back(t.translation_error);
+        ts.push_back(t.translation_sigma);
+        re.push_back(t.rotation_error);
+        rs.push_back(t.rotation_sigma);
+        share.push_back(t.covariance_share);
+      }
+      const std::string t_ratio = ratioText(te, ts), r_ratio = ratioText(re, rs);
+      auto within = [&](const std::string& ratio) {
+        if (ratio == "-") return false;
+        const double value = std::stod(ratio);
+        return value >= low && value <= high;
+      };
+      std::ostringstream row;
+      row << std::fixed << "| " << name << " | " << std::setprecision(0) << level.degrees << "°/"
+          << std::setprecision(2) << level.metres << " m | " << te.size() << "/" << trials << " | "
+          << std::setprecision(3) << 100.0 * median(te) << " | " << 100.0 * median(ts) << " | "
+          << t_ratio << " | " << std::setprecision(4) << kDeg * median(re) << " | "
+          << kDeg * median(rs) << " | "
+          << r_ratio << " | " << (within(t_ratio) && within(r_ratio) ? "yes" : "**no**")
+          << " | " << std::setprecision(1) << 100.0 * median(share) << " % |\n";
+      std::cout << row.str();
+    }
+  }
+  return 0;
+}
