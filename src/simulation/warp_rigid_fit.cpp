@@ -1,6 +1,8 @@
 #include "pda_registration/simulation/warp_rigid_fit.hpp"
 
 #include <Eigen/Geometry>  // Eigen::umeyama
+#include <algorithm>
+#include <cmath>
 
 #include "pda_registration/core/target_index.hpp"
 
@@ -8,10 +10,18 @@ namespace pda_registration {
 namespace simulation {
 namespace {
 
-double meanResidual(const Eigen::Isometry3d& T, const PointList& points, const PointList& warped) {
-  double sum = 0.0;
-  for (size_t i = 0; i < points.size(); ++i) sum += (T * points[i] - warped[i]).norm();
-  return points.empty() ? 0.0 : sum / static_cast<double>(points.size());
+// Mean and RMS of |T y - W(y)|.
+void residuals(const Eigen::Isometry3d& T, const PointList& points, const PointList& warped,
+               double* mean, double* rms) {
+  double sum = 0.0, sum_squares = 0.0;
+  for (size_t i = 0; i < points.size(); ++i) {
+    const double distance = (T * points[i] - warped[i]).norm();
+    sum += distance;
+    sum_squares += distance * distance;
+  }
+  const double count = static_cast<double>(std::max<size_t>(points.size(), 1));
+  *mean = sum / count;
+  *rms = std::sqrt(sum_squares / count);
 }
 
 }  // namespace
@@ -44,8 +54,9 @@ WarpRigidFit fitRigidToWarp(const DriftDistortion& warp, const PointList& points
     // Eigen's closed form, independent of the registration code the ground truth measures.
     fit.T_fit.matrix() = Eigen::umeyama(from, to, false);
   }
-  fit.mean_residual_fixed = meanResidual(Eigen::Isometry3d::Identity(), points, warped);
-  fit.mean_residual_fit = meanResidual(fit.T_fit, points, warped);
+  residuals(Eigen::Isometry3d::Identity(), points, warped, &fit.mean_residual_fixed,
+            &fit.rms_residual_fixed);
+  residuals(fit.T_fit, points, warped, &fit.mean_residual_fit, &fit.rms_residual_fit);
   return fit;
 }
 

@@ -206,6 +206,8 @@ int main(int argc, char** argv) {
     fit.add("overlap_points", maps.warp_fit.overlap_points);
     fit.add("mean_distance_m", moved.mean_distance).add("rotation_deg", moved.rotation_deg);
     fit.add("translation_m", moved.translation);
+    fit.add("rms_residual_fixed_m", maps.warp_fit.rms_residual_fixed);
+    fit.add("rms_residual_fit_m", maps.warp_fit.rms_residual_fit);
     fit.add("mean_residual_fixed_m", maps.warp_fit.mean_residual_fixed);
     fit.add("mean_residual_fit_m", maps.warp_fit.mean_residual_fit);
     json.addRaw("warp_fit", fit.str());
