@@ -11,6 +11,7 @@ add_library(pda_registration_simulation
   src/simulation/scene.cpp
   src/simulation/sensor_paths.cpp
   src/simulation/velodyne_simulator.cpp
+  src/simulation/warp_rigid_fit.cpp
 )
 target_compile_options(pda_registration_simulation PRIVATE ${PDA_WARNINGS})
 target_include_directories(pda_registration_simulation SYSTEM PRIVATE ${catkin_INCLUDE_DIRS})

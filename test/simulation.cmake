@@ -21,3 +21,9 @@ catkin_add_gtest(lattice_registration_test lattice_registration_test.cpp)
 target_compile_options(lattice_registration_test PRIVATE ${PDA_WARNINGS})
 target_link_libraries(lattice_registration_test
   pda_test_support pda_registration_simulation gtest_main)
+
+# The ground truth of a warped dense map: the best rigid fit of the warp over the overlap.
+catkin_add_gtest(warp_rigid_fit_test warp_rigid_fit_test.cpp)
+target_compile_options(warp_rigid_fit_test PRIVATE ${PDA_WARNINGS})
+target_link_libraries(warp_rigid_fit_test
+  pda_test_support pda_registration_simulation gtest_main)

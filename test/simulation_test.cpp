@@ -533,6 +533,12 @@ TEST(PdaSimulateTool, WritesACaseFolderAndABagLikeTheLibrary) {
   EXPECT_TRUE(target.back().isApprox(maps.dense.back(), 1e-6));  // float precision in the file
   EXPECT_TRUE(source.front().isApprox(maps.sparse.front(), 1e-6));
   EXPECT_TRUE(truth.isApprox(maps.T_target_source, 1e-12));
+  // Without distortion the warp's fixed point, written beside it, is the same transform.
+  Eigen::Isometry3d unwarped;
+  ASSERT_TRUE(readTransformFile(folder + "/T_target_source_unwarped.txt", &unwarped, &error))
+      << error;
+  EXPECT_EQ(unwarped.matrix(), truth.matrix());
+  EXPECT_EQ(run.out.find("warp_fit"), std::string::npos);
 
   // The bag's tf seed is the default 3 degree / 15 cm perturbation of the truth.
   rosbag::Bag bag_file(bag, rosbag::bagmode::Read);
@@ -547,6 +553,30 @@ TEST(PdaSimulateTool, WritesACaseFolderAndABagLikeTheLibrary) {
     ++tf_messages;
   }
   EXPECT_EQ(tf_messages, 61);
+}
+
+TEST(PdaSimulateTool, DistortionWritesTheFittedGroundTruthAndTheFixedPoint) {
+  const std::string folder = temporaryPath("warped");
+  const CommandRun run = runPdaSimulate("--output " + folder +
+                                        " --seed 13 --kinect-frames 3 --velodyne-revolutions 1" +
+                                        " --distortion 0.01");
+  ASSERT_EQ(run.exit_code, 0) << run.err;
+  MapSimulationOptions options = smallOptions(13);
+  options.distortion = 0.01;
+  const SimulatedMaps maps = simulateMaps(options);
+  Eigen::Isometry3d truth, unwarped;
+  std::string error;
+  ASSERT_TRUE(readTransformFile(folder + "/T_target_source.txt", &truth, &error)) << error;
+  ASSERT_TRUE(readTransformFile(folder + "/T_target_source_unwarped.txt", &unwarped, &error))
+      << error;
+  EXPECT_TRUE(truth.isApprox(maps.T_target_source, 1e-12));
+  EXPECT_TRUE(unwarped.isApprox(maps.T_target_source_unwarped, 1e-12));
+  EXPECT_FALSE(truth.isApprox(unwarped, 1e-4));
+  EXPECT_EQ(jsonNumber(run.out, "overlap_points"),
+            static_cast<double>(maps.warp_fit.overlap_points));
+  const PoseError moved = poseError(maps.sparse, truth, unwarped);
+  EXPECT_NEAR(jsonNumber(run.out, "mean_distance_m"), moved.mean_distance, 1e-6);
+  EXPECT_GT(moved.mean_distance, 0.001);
 }
 
 TEST(PdaSimulateTool, BadFlagsExitWithCodeTwoAndOneLine) {

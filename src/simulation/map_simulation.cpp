@@ -115,8 +115,8 @@ SimulatedMaps simulateMaps(const MapSimulationOptions& options) {
     outdoor = makeOutdoorScene(options.seed);
     maps.scene = outdoor.scene;
   }
-  maps.T_target_source = transformFromYawPitchRoll(options.yaw_deg, options.pitch_deg,
-                                                   options.roll_deg, options.translation);
+  maps.T_target_source_unwarped = transformFromYawPitchRoll(
+      options.yaw_deg, options.pitch_deg, options.roll_deg, options.translation);
 
   std::vector<Eigen::Isometry3d> lidar_poses = sparseLidarPoses(maps, options, outdoor);
   if (options.same_pose) lidar_poses.resize(1);  // one scan, re-observed by the same sensor
@@ -147,16 +147,28 @@ SimulatedMaps simulateMaps(const MapSimulationOptions& options) {
   }
   maps.dense_raw_points = dense.size();
   maps.dense = voxelDownsample(dense, options.dense_voxel_size);
-  applyDistortion(DriftDistortion{distortion_centre, options.distortion}, &maps.dense);
 
-  // The lidar sees the scene (= dense frame); its map frame is where T_target_source says.
-  const Eigen::Isometry3d T_source_target = maps.T_target_source.inverse();
+  // The lidar sees the scene (= undistorted dense frame); its map frame is where
+  // T_target_source_unwarped says.
+  const Eigen::Isometry3d T_source_target = maps.T_target_source_unwarped.inverse();
+  PointList sparse_in_scene;
   for (size_t i = 0; i < lidar_poses.size(); ++i) {
     const PointList revolution = simulateVelodyneRevolution(
         maps.scene, lidar_poses[i], sparse_lidar, streamSeed(options.seed, kVelodyneStream, i));
+    sparse_in_scene.insert(sparse_in_scene.end(), revolution.begin(), revolution.end());
     for (const Point& p : revolution) maps.sparse.push_back(T_source_target * p);
     maps.velodyne_poses.push_back(T_source_target * lidar_poses[i]);
   }
+
+  // The warped dense map's ground truth: the best rigid fit of the warp where the maps overlap
+  // (warp_rigid_fit.hpp). Without distortion it is the chosen transform, bit for bit.
+  const DriftDistortion distortion{distortion_centre, options.distortion};
+  maps.T_target_source = maps.T_target_source_unwarped;
+  if (options.distortion != 0.0) {
+    maps.warp_fit = fitRigidToWarpOverOverlap(distortion, sparse_in_scene, maps.dense);
+    maps.T_target_source = maps.warp_fit.T_fit * maps.T_target_source_unwarped;
+  }
+  applyDistortion(distortion, &maps.dense);
   return maps;
 }
 

@@ -1,7 +1,9 @@
 // pda_simulate: simulate an office, a hand-held Kinect 2 scan (the dense map, target) and a few
 // Velodyne VLP-16 revolutions (the sparse map, source) with a known T_target_source, and write
 // them as a case folder (target.pcd, source.pcd, T_target_source.txt, as in ../shared/data) and/or
-// a rosbag. Prints one JSON line. Exit codes: 0 written, 2 bad usage or a file not written.
+// a rosbag. With --distortion the ground truth is the best rigid fit of the warp over the overlap
+// (warp_rigid_fit.hpp); the warp's fixed point goes to T_target_source_unwarped.txt beside it.
+// Prints one JSON line. Exit codes: 0 written, 2 bad usage or a file not written.
 
 #include <chrono>
 #include <filesystem>
@@ -9,6 +11,7 @@
 #include <sstream>
 #include <vector>
 
+#include "pda_registration/core/error_metrics.hpp"
 #include "pda_registration/core/perturbation.hpp"
 #include "pda_registration/core/transform_io.hpp"
 #include "pda_registration/simulation/map_bag_writer.hpp"
@@ -27,6 +30,8 @@ const char* kUsage =
     "  Simulates an office scanned by a Kinect 2 (dense map, target) and a Velodyne VLP-16\n"
     "  (sparse map, source), p_dense = T * p_sparse. Prints one JSON line.\n"
     "  --output DIR              write DIR/target.pcd, DIR/source.pcd, DIR/T_target_source.txt\n"
+    "                            (the ground truth) and DIR/T_target_source_unwarped.txt (the\n"
+    "                            chosen transform before --distortion; the same without it)\n"
     "  --bag FILE                write a rosbag: /dense_map, /sparse_map, /tf (perturbed seed\n"
     "                            dense_map -> sparse_map), /ground_truth\n"
     "  --seed N                  scene layout and sensor noise (1)\n"
@@ -49,7 +54,9 @@ const char* kUsage =
     "  --roll-deg D              ground-truth roll (0)\n"
     "  --translation X,Y,Z       ground-truth translation in metres (1.5,-0.8,0.1)\n"
     "  --distortion A            non-rigid drift of the dense map: relative scale error 5 m from\n"
-    "                            the centre, with as much upward bend (0 = rigid; 0.01 = 5 cm)\n"
+    "                            the centre, with as much upward bend (0 = rigid; 0.01 = 5 cm).\n"
+    "                            The ground truth is then the best rigid fit of the warp over\n"
+    "                            the sparse points that have a dense point within 0.1 m\n"
     "  --no-noise                exact sensors (no depth or range noise)\n"
     "  --seed-error-deg D        rotation error of the bag's tf seed (3)\n"
     "  --seed-error-m M          translation error of the bag's tf seed (0.15)\n"
@@ -151,12 +158,15 @@ int main(int argc, char** argv) {
     const std::string target = (folder / "target.pcd").string();
     const std::string source = (folder / "source.pcd").string();
     const std::string transform = (folder / "T_target_source.txt").string();
+    const std::string unwarped = (folder / "T_target_source_unwarped.txt").string();
     if (!savePointCloudFile(target, maps.dense, &error) ||
         !savePointCloudFile(source, maps.sparse, &error) ||
-        !writeTransformFile(transform, maps.T_target_source, &error)) {
+        !writeTransformFile(transform, maps.T_target_source, &error) ||
+        !writeTransformFile(unwarped, maps.T_target_source_unwarped, &error)) {
       return usageError("--output: " + error);
     }
     files.add("target", target).add("source", source).add("ground_truth", transform);
+    files.add("ground_truth_unwarped", unwarped);
   }
 
   JsonLine bag_json;
@@ -186,6 +196,22 @@ int main(int argc, char** argv) {
   json.add("sparse_points", maps.sparse.size()).add("distortion", options.distortion);
   json.add("noise", options.kinect.noise).add("simulation_ms", simulation_ms);
   json.add("T_target_source", maps.T_target_source);
+  json.add("T_target_source_unwarped", maps.T_target_source_unwarped);
+  if (options.distortion != 0.0) {
+    // How far the ground truth moved from the fixed point, measured as pda_benchmark measures
+    // errors (eq. 22 over the sparse map, rotation, translation), and how well a rigid fit can do.
+    const PoseError moved =
+        poseError(maps.sparse, maps.T_target_source, maps.T_target_source_unwarped);
+    JsonLine fit;
+    fit.add("overlap_points", maps.warp_fit.overlap_points);
+    fit.add("mean_distance_m", moved.mean_distance).add("rotation_deg", moved.rotation_deg);
+    fit.add("translation_m", moved.translation);
+    fit.add("rms_residual_fixed_m", maps.warp_fit.rms_residual_fixed);
+    fit.add("rms_residual_fit_m", maps.warp_fit.rms_residual_fit);
+    fit.add("mean_residual_fixed_m", maps.warp_fit.mean_residual_fixed);
+    fit.add("mean_residual_fit_m", maps.warp_fit.mean_residual_fit);
+    json.addRaw("warp_fit", fit.str());
+  }
   json.addRaw("files", files.str());
   if (cl.has("bag")) json.addRaw("bag", bag_json.str());
   std::cout << json.str() << std::endl;

@@ -1,10 +1,13 @@
 #pragma once
 // The two maps a user registers, simulated end to end: an office scene, a hand-held Kinect 2
 // scan accumulated into a dense map (the target) and a few Velodyne VLP-16 revolutions
-// accumulated into a sparse map (the source), related by a chosen ground truth
-//   p_dense = T_target_source * p_sparse.
+// accumulated into a sparse map (the source), related by a chosen rigid transform
+//   p_scene = T_target_source_unwarped * p_sparse.
 // The dense map frame is the scene frame (floor at z = 0); the sparse map frame is placed so
-// that T_target_source holds. Deterministic per seed (and independent of the thread count).
+// that this holds. Without distortion the ground truth T_target_source is that transform; with
+// distortion the dense map is warped non-rigidly and the ground truth is the best rigid fit of
+// the warp over the overlap (warp_rigid_fit.hpp) times it. Deterministic per seed (and
+// independent of the thread count).
 
 #include <Eigen/Geometry>
 #include <cstdint>
@@ -16,6 +19,7 @@
 #include "pda_registration/simulation/office_scene.hpp"
 #include "pda_registration/simulation/outdoor_scene.hpp"
 #include "pda_registration/simulation/velodyne_simulator.hpp"
+#include "pda_registration/simulation/warp_rigid_fit.hpp"
 
 namespace pda_registration {
 namespace simulation {
@@ -49,7 +53,8 @@ struct MapSimulationOptions {
   int velodyne_revolutions = 3;    ///< lidar stops around the loop, one revolution each
   double dense_voxel_size = 0.03;  ///< [m] voxel grid of the accumulated dense map; 0 keeps all
   double distortion = 0.0;         ///< DriftDistortion::amount applied to the dense map
-  // Ground truth T_target_source: rotation Rz(yaw) Ry(pitch) Rx(roll), then the translation.
+  // T_target_source_unwarped (the ground truth without distortion): rotation Rz(yaw) Ry(pitch)
+  // Rx(roll), then the translation.
   double yaw_deg = 25.0;
   double pitch_deg = 0.0;
   double roll_deg = 0.0;
@@ -63,7 +68,12 @@ struct SimulatedMaps {
   OfficeScene office;  ///< the office (office scenes only)
   PointList dense;     ///< target, dense map frame
   PointList sparse;    ///< source, sparse map frame
+  /// The ground truth, p_dense ~ T_target_source * p_sparse: warp_fit.T_fit *
+  /// T_target_source_unwarped (exactly T_target_source_unwarped without distortion).
   Eigen::Isometry3d T_target_source = Eigen::Isometry3d::Identity();
+  /// The chosen rigid transform, p_scene = T * p_sparse: the warp's fixed point.
+  Eigen::Isometry3d T_target_source_unwarped = Eigen::Isometry3d::Identity();
+  WarpRigidFit warp_fit;  ///< identity, no points, without distortion
   std::vector<Eigen::Isometry3d> kinect_poses;    ///< T_dense_camera, before distortion
   std::vector<Eigen::Isometry3d> dense_lidar_poses;  ///< T_dense_lidar (lidar dense sensors)
   std::vector<Eigen::Isometry3d> velodyne_poses;  ///< T_sparse_lidar
