@@ -1,5 +1,7 @@
 // rostest: the demo's path in short form. Waits for demo_monitor's result.json and checks that
-// the nodelet's estimate beats the tf seed by a wide margin and that the pictures were written.
+// the nodelet's estimate beats the tf seed by a wide margin, that ~pose's covariance is
+// consistent with the bag's ground truth (|error| / sigma within [0.5, 2] for translation and
+// rotation, sigma = sqrt(trace) of each block), and that the pictures were written.
 #include <gtest/gtest.h>
 #include <ros/ros.h>
 
@@ -22,7 +24,7 @@ double numberIn(const std::string& json, const std::string& section, const std::
   return std::stod(match[1]);
 }
 
-TEST(DemoShort, CorrectedErrorBeatsTheSeedByAWideMargin) {
+TEST(DemoShort, CorrectedErrorBeatsTheSeedAndMatchesThePoseCovariance) {
   ros::NodeHandle private_node("~");
   const std::string path = private_node.param<std::string>("result", "");
   ASSERT_FALSE(path.empty());
@@ -41,6 +43,16 @@ TEST(DemoShort, CorrectedErrorBeatsTheSeedByAWideMargin) {
   EXPECT_LT(corrected, 0.02);
   EXPECT_LT(corrected, 0.1 * seed);
   EXPECT_LT(numberIn(json, "corrected_error", "rot_err_deg"), 0.3);
+  // The covariance published with the estimate says how far off it is: neither 3-80x too
+  // confident (the inverse Hessian alone) nor uselessly wide.
+  const double t_ratio = numberIn(json, "covariance_check", "trans_err_over_sigma");
+  const double r_ratio = numberIn(json, "covariance_check", "rot_err_over_sigma");
+  ASSERT_FALSE(std::isnan(t_ratio) || std::isnan(r_ratio)) << "no ~pose paired with ~transform\n"
+                                                            << json;
+  EXPECT_GE(t_ratio, 0.5) << json;
+  EXPECT_LE(t_ratio, 2.0) << json;
+  EXPECT_GE(r_ratio, 0.5) << json;
+  EXPECT_LE(r_ratio, 2.0) << json;
   const std::filesystem::path directory = std::filesystem::path(path).parent_path();
   EXPECT_GT(std::filesystem::file_size(directory / "before_after.png"), 10000u);
   EXPECT_GT(std::filesystem::file_size(directory / "associations.png"), 10000u);
