@@ -209,9 +209,16 @@ TEST(PdaAlign, AlignsARealCaseAndReportsErrorsAgainstGroundTruth) {
   EXPECT_NE(run.out.find("\"method\":\"pda\""), std::string::npos);
   EXPECT_NE(run.out.find("\"converged\":true"), std::string::npos);
   for (const char* key : {"time_ms", "runs", "sigma", "inlier_fraction", "mean_distance",
-                          "rot_err_deg", "trans_err_m", "peak_rss_mb"}) {
+                          "rot_err_deg", "trans_err_m", "peak_rss_mb", "expected_error_m",
+                          "expected_error_deg"}) {
     EXPECT_FALSE(std::isnan(jsonNumber(run.out, key))) << key << " missing in " << run.out;
   }
+  // The covariance's expected error: positive, and of the size of the errors made (room_scan's
+  // ground truth is good to ~1 cm / 0.5 deg).
+  EXPECT_GT(jsonNumber(run.out, "expected_error_m"), 1e-4);
+  EXPECT_LT(jsonNumber(run.out, "expected_error_m"), 0.05);
+  EXPECT_GT(jsonNumber(run.out, "expected_error_deg"), 1e-3);
+  EXPECT_LT(jsonNumber(run.out, "expected_error_deg"), 1.0);
   EXPECT_LT(jsonNumber(run.out, "mean_distance"), 0.03);
   EXPECT_GT(jsonNumber(run.out, "initial_mean_distance"), 0.2);
   Eigen::Isometry3d written, truth;
@@ -257,6 +264,48 @@ TEST(PdaAlign, RunsPclMethodsOnTheSameInputs) {
                   data + "T_target_source.txt --method icp");
   EXPECT_NE(run.out.find("\"method\":\"icp\""), std::string::npos) << run.out << run.err;
   EXPECT_TRUE(run.exit_code == 0 || run.exit_code == 1);
+}
+
+// The covariance check as a user runs it: the table's row for factory_p64 (exact ground truth)
+// within the range for real cases, and a bad flag is one line and exit code 2.
+std::vector<std::string> tableCells(const std::string& row) {
+  std::vector<std::string> cells;
+  std::istringstream in(row);
+  std::string cell;
+  while (std::getline(in, cell, '|')) {
+    const size_t first = cell.find_first_not_of(' '), last = cell.find_last_not_of(' ');
+    if (first != std::string::npos) cells.push_back(cell.substr(first, last - first + 1));
+  }
+  return cells;
+}
+
+TEST(PdaCovarianceCheck, FactoryErrorIsWithinAThirdToThreeTimesSigma) {
+  const CommandRun run = runCommand(PDA_COVARIANCE_CHECK_BINARY,
+                                    "--data " + testing_support::sharedDataDirectory() +
+                                        " --cases factory_p64 --trials 5 --bounds 0.3:3");
+  ASSERT_EQ(run.exit_code, 0) << run.err;
+  const size_t start = run.out.find("| factory_p64 |");
+  ASSERT_NE(start, std::string::npos) << run.out;
+  const std::vector<std::string> cells =
+      tableCells(run.out.substr(start, run.out.find('\n', start) - start));
+  ASSERT_EQ(cells.size(), 11u) << run.out;
+  EXPECT_EQ(cells[2], "5/5");
+  for (int column : {5, 8}) {  // translation and rotation |error| / sigma
+    const double ratio = std::stod(cells[column]);
+    EXPECT_GE(ratio, 0.3) << run.out;
+    EXPECT_LE(ratio, 3.0) << run.out;
+  }
+  EXPECT_EQ(cells[9], "yes");
+}
+
+TEST(PdaCovarianceCheck, BadBoundsAreOneLineAndExitCodeTwo) {
+  const CommandRun run = runCommand(PDA_COVARIANCE_CHECK_BINARY,
+                                    "--data " + testing_support::sharedDataDirectory() +
+                                        " --bounds 2:1");
+  EXPECT_EQ(run.exit_code, 2);
+  EXPECT_EQ(lineCount(run.err), 1u);
+  EXPECT_NE(run.err.find("pda_covariance_check: error: --bounds"), std::string::npos) << run.err;
+  EXPECT_TRUE(run.out.empty());
 }
 
 }  // namespace
