@@ -48,16 +48,11 @@ int main(int argc, char** argv) {
   CommandLine cl =
       commandLineWithSettings({"target", "source", "initial", "perturb", "seed", "output",
                                "aligned-cloud", "ground-truth", "method", "compare", "repeat"});
-  if (!cl.parse(argc, argv)) return usageError(cl.error());
-  if (cl.has("help")) {
-    std::cout << kUsage << settingsFlagsHelp();
-    return 0;
-  }
+  MethodSettings settings;
+  const int exit_code = startRegistrationTool("pda_align", kUsage, argc, argv, &cl, &settings);
+  if (exit_code >= 0) return exit_code;
   if (!cl.has("target") || !cl.has("source"))
     return usageError("--target and --source are required");
-
-  MethodSettings settings;
-  if (!readSettingsFlags(&cl, &settings)) return usageError(cl.error());
   const std::string method = cl.text("method", "pda");
   if (!isKnownMethod(method))
     return usageError("--method: " + quoted(method) + " is not pda, icp, gicp or ndt");

@@ -60,14 +60,10 @@ int main(int argc, char** argv) {
   CommandLine cl = commandLineWithSettings(
       {"data", "cases", "levels", "trials", "methods", "success", "csv", "seed", "thin-target"},
       {"reverse"});
-  if (!cl.parse(argc, argv)) return fail(cl.error());
-  if (cl.has("help")) {
-    std::cout << kUsage << settingsFlagsHelp();
-    return 0;
-  }
-  if (!cl.has("data")) return fail("--data is required");
   MethodSettings settings;
-  if (!readSettingsFlags(&cl, &settings)) return fail(cl.error());
+  const int exit_code = startRegistrationTool("pda_benchmark", kUsage, argc, argv, &cl, &settings);
+  if (exit_code >= 0) return exit_code;
+  if (!cl.has("data")) return fail("--data is required");
   int trials = 10, first_seed = 1;
   double success_threshold = 0.05, thin_target = 0.0;
   if (!cl.integer("trials", &trials, 1, 100000) || !cl.integer("seed", &first_seed, 0, 1 << 30) ||

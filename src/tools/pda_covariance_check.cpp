@@ -65,14 +65,11 @@ std::string ratioText(const std::vector<double>& errors, const std::vector<doubl
 int main(int argc, char** argv) {
   CommandLine cl =
       commandLineWithSettings({"data", "cases", "levels", "trials", "seed", "bounds", "csv"}, {});
-  if (!cl.parse(argc, argv)) return fail(cl.error());
-  if (cl.has("help")) {
-    std::cout << kUsage << settingsFlagsHelp();
-    return 0;
-  }
-  if (!cl.has("data")) return fail("--data is required");
   MethodSettings settings;
-  if (!readSettingsFlags(&cl, &settings)) return fail(cl.error());
+  const int exit_code =
+      startRegistrationTool("pda_covariance_check", kUsage, argc, argv, &cl, &settings);
+  if (exit_code >= 0) return exit_code;
+  if (!cl.has("data")) return fail("--data is required");
   int trials = 5, first_seed = 1;
   if (!cl.integer("trials", &trials, 1, 100000) || !cl.integer("seed", &first_seed, 0, 1 << 30)) {
     return fail(cl.error());

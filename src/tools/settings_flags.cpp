@@ -1,5 +1,6 @@
 #include "pda_registration/tools/settings_flags.hpp"
 
+#include <iostream>
 #include <limits>
 #include <sstream>
 
@@ -163,6 +164,17 @@ bool readSettingsFlags(CommandLine* cl, MethodSettings* settings,
     if (!clash.empty()) return cl->setError(clash);
   }
   return true;
+}
+
+int startRegistrationTool(const std::string& tool, const char* usage, int argc, char** argv,
+                          CommandLine* cl, MethodSettings* settings) {
+  if (!cl->parse(argc, argv)) return reportError(tool, cl->error());
+  if (cl->has("help")) {
+    std::cout << usage << settingsFlagsHelp();
+    return 0;
+  }
+  if (!readSettingsFlags(cl, settings)) return reportError(tool, cl->error());
+  return -1;
 }
 
 }  // namespace pda_registration

@@ -25,4 +25,10 @@ std::string settingsFlagsHelp();
 bool readSettingsFlags(CommandLine* command_line, MethodSettings* settings,
                        const std::set<std::string>& skip = {});
 
+/// How a registration tool starts: parses argv into *cl, prints `usage` and the shared flags'
+/// help on --help, and reads the shared flags into *settings. Returns the exit code to leave with
+/// (0 after --help; 2 on a bad flag, reported as "tool: error: ..."), or -1 to go on.
+int startRegistrationTool(const std::string& tool, const char* usage, int argc, char** argv,
+                          CommandLine* cl, MethodSettings* settings);
+
 }  // namespace pda_registration
