@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <limits>
 #include <map>
 #include <random>
 #include <tuple>
@@ -85,7 +86,9 @@ Realisation realise(WeightedCorrespondences c, double noise, double patch_offset
     squared += along * along;
   }
   PoseCovarianceTerms terms;
-  EXPECT_TRUE(computePoseCovariance(c, T, squared / static_cast<double>(c.size()), &r.covariance,
+  // Gaussian weights: the Monte Carlo residuals are Gaussian and the step above is least squares.
+  EXPECT_TRUE(computePoseCovariance(c, T, squared / static_cast<double>(c.size()),
+                                    std::numeric_limits<double>::infinity(), &r.covariance,
                                     &terms));
   r.model = terms.model;
   return r;

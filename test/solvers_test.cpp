@@ -2,6 +2,8 @@
 // on the same transform, and recover it exactly from noise-free correspondences.
 #include <gtest/gtest.h>
 
+#include <limits>
+
 #include <Eigen/Eigenvalues>
 #include <random>
 
@@ -102,16 +104,22 @@ TEST(Solvers, RefuseTooFewCorrespondences) {
   EXPECT_TRUE(T.isApprox(Eigen::Isometry3d::Identity()));
 }
 
-// The covariance is symmetric positive definite and scales with sigma^2.
-TEST(PoseCovariance, PositiveDefiniteAndProportionalToSigmaSquared) {
+// The covariance is symmetric positive definite; its noise term scales with sigma^2 and the
+// total never claims less than the noise term (pose_covariance.hpp).
+TEST(PoseCovariance, PositiveDefiniteWithANoiseTermProportionalToSigmaSquared) {
   const WeightedCorrespondences c = makeCorrespondences(someTransform(), 0.05, 1.0, 500, 5);
+  const double gaussian = std::numeric_limits<double>::infinity();
   Eigen::Matrix<double, 6, 6> small, large;
-  ASSERT_TRUE(computePoseCovariance(c, someTransform(), 0.01, &small));
-  ASSERT_TRUE(computePoseCovariance(c, someTransform(), 0.04, &large));
+  PoseCovarianceTerms small_terms, large_terms;
+  ASSERT_TRUE(computePoseCovariance(c, someTransform(), 0.01, gaussian, &small, &small_terms));
+  ASSERT_TRUE(computePoseCovariance(c, someTransform(), 0.04, gaussian, &large, &large_terms));
   EXPECT_TRUE(small.isApprox(small.transpose()));
   const Eigen::SelfAdjointEigenSolver<Eigen::Matrix<double, 6, 6>> eigen(small);
   EXPECT_GT(eigen.eigenvalues().minCoeff(), 0.0);
-  EXPECT_TRUE(large.isApprox(4.0 * small, 1e-9));
+  EXPECT_TRUE(large_terms.model.isApprox(4.0 * small_terms.model, 1e-9));
+  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix<double, 6, 6>> excess(small -
+                                                                          small_terms.model);
+  EXPECT_GE(excess.eigenvalues().minCoeff(), -1e-15);
   // 500 points spread over 10 m with sigma 0.1 m pin the translation to ~0.1/sqrt(500*w) m.
   EXPECT_LT(std::sqrt(small(0, 0)), 0.02);
 }

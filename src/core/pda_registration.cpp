@@ -186,7 +186,8 @@ void fillFinalStatistics(const PointList& source, const CandidateSets& candidate
       source, candidates, shapes, state.T, p.nu, state.sigma_squared, p.threads);
   const auto covariance_start = std::chrono::steady_clock::now();
   PoseCovarianceTerms terms;
-  computePoseCovariance(correspondences, state.T, state.sigma_squared, &result->covariance, &terms);
+  computePoseCovariance(correspondences, state.T, state.sigma_squared, p.nu, &result->covariance,
+                        &terms);
   result->covariance_blocks = terms.blocks;
   result->covariance_ms = std::chrono::duration<double, std::milli>(
                               std::chrono::steady_clock::now() - covariance_start)

@@ -57,17 +57,27 @@ Matrix6d scoreSpread(const CellScores& cells) {
   return blocks / (blocks - 6.0) * spread;
 }
 
+bool invertPositiveDefinite(const Matrix6d& matrix, Matrix6d* inverse) {
+  const Eigen::LDLT<Matrix6d> factorization(matrix);
+  if (factorization.info() != Eigen::Success || !factorization.isPositive() ||
+      factorization.vectorD().minCoeff() <= 0.0) {
+    return false;
+  }
+  *inverse = factorization.solve(Matrix6d::Identity());
+  return inverse->allFinite();
+}
+
 }  // namespace
 
 bool computePoseCovariance(const WeightedCorrespondences& correspondences,
                            const Eigen::Isometry3d& T_target_source, double sigma_squared,
-                           Eigen::Matrix<double, 6, 6>* covariance,
+                           double nu, Eigen::Matrix<double, 6, 6>* covariance,
                            PoseCovarianceTerms* terms) {
   covariance->setZero();
   if (terms) *terms = PoseCovarianceTerms();
   if (correspondences.size() < 3 || !(sigma_squared > 0.0)) return false;
   // Hessian of the EM objective and every point's score (the gradient of its term) at the optimum.
-  Matrix6d hessian = Matrix6d::Zero();
+  Matrix6d hessian = Matrix6d::Zero(), robust_hessian = Matrix6d::Zero();
   std::vector<Vector6d> scores(correspondences.size());
   PointList moved(correspondences.size());
   Eigen::AlignedBox3d overlap;
@@ -79,17 +89,29 @@ bool computePoseCovariance(const WeightedCorrespondences& correspondences,
         shapeInverse(correspondences.normal[i], correspondences.inverse_kappa[i]);
     const Eigen::Matrix<double, 6, 3> weighted =
         correspondences.weight[i] * jacobian.transpose() * shape;
+    const Eigen::Vector3d residual = correspondences.target_mean[i] - moved[i];
     hessian.noalias() += weighted * jacobian;
-    scores[i] = weighted * (correspondences.target_mean[i] - moved[i]);
+    scores[i] = weighted * residual;
+    // The t-weight's own derivative: d(w r)/dr = w (I - 2 w / (nu + 3) M^-1 r r^T / sigma^2).
+    const Vector6d pull = jacobian.transpose() * shape * residual;
+    const double t_weight =
+        (nu + 3.0) / (nu + shapedSquaredNorm(residual, correspondences.normal[i],
+                                             correspondences.inverse_kappa[i]) /
+                               sigma_squared);
+    robust_hessian.noalias() += weighted * jacobian;
+    if (std::isfinite(nu)) {
+      robust_hessian.noalias() -= 2.0 * correspondences.weight[i] * t_weight /
+                                  ((nu + 3.0) * sigma_squared) * pull * pull.transpose();
+    }
     overlap.extend(moved[i]);
   }
-  const Eigen::LDLT<Matrix6d> factorization(hessian);
-  if (factorization.info() != Eigen::Success || !factorization.isPositive() ||
-      factorization.vectorD().minCoeff() <= 0.0) {
-    return false;
-  }
-  const Matrix6d hessian_inverse = factorization.solve(Matrix6d::Identity());
+  Matrix6d hessian_inverse;
+  if (!invertPositiveDefinite(hessian, &hessian_inverse)) return false;
   const Matrix6d model = sigma_squared * hessian_inverse;
+  // The sandwich's bread: the Student-t objective's exact Hessian (an M-estimator's), which the
+  // IRLS matrix above overstates where residuals are large; the IRLS one if it is not definite.
+  Matrix6d bread;
+  if (!invertPositiveDefinite(robust_hessian, &bread)) bread = hessian_inverse;
 
   // Structure term: the spread of the scores summed over spatial blocks (a cluster sandwich,
   // H^-1 (sum_b g_b g_b^T) H^-1). Neighbouring residuals share the model's errors (a surface
@@ -110,7 +132,7 @@ bool computePoseCovariance(const WeightedCorrespondences& correspondences,
       it->second += scores[i];
     }
     for (double edge = finest_edge; cells.size() >= kMinBlocks; edge *= 2.0) {
-      structure = hessian_inverse * scoreSpread(cells) * hessian_inverse;
+      structure = bread * scoreSpread(cells) * bread;
       blocks = cells.size();
       block_edge = edge;
       cells = coarsen(cells);

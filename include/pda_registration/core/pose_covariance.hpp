@@ -9,7 +9,8 @@
 //  - structure: a spatial-block sandwich H^-1 (sum_b g_b g_b^T) H^-1 over the gradients g_b of
 //    the objective summed over blocks of the overlap. At the optimum the g_b cancel in total;
 //    how far they disagree is how much the pose rests on regions that want different poses
-//    (correlated residuals: sampling, surface fit, non-rigid distortion).
+//    (correlated residuals: sampling, surface fit, non-rigid distortion). H here is the Student-t
+//    objective's exact Hessian (with the t-weights' derivative), as in an M-estimator's sandwich.
 // See the README's covariance section for what it is calibrated against (pda_covariance_check).
 
 #include <Eigen/Geometry>
@@ -26,10 +27,11 @@ struct PoseCovarianceTerms {
   double block_edge = 0.0;  ///< [length] their edge
 };
 
-/// Returns false (and a zero matrix) when the Hessian is singular or there is nothing to use.
+/// `nu` is the E-step's (+inf: Gaussian). Returns false (and a zero matrix) when the Hessian is
+/// singular or there is nothing to use.
 bool computePoseCovariance(const WeightedCorrespondences& correspondences,
                            const Eigen::Isometry3d& T_target_source, double sigma_squared,
-                           Eigen::Matrix<double, 6, 6>* covariance,
+                           double nu, Eigen::Matrix<double, 6, 6>* covariance,
                            PoseCovarianceTerms* terms = nullptr);
 
 /// The error a covariance expects, as one number per part: sqrt(trace) of its translation block
