@@ -1,6 +1,7 @@
 #include "pda_registration/core/pose_covariance.hpp"
 
 #include <Eigen/Cholesky>
+#include <Eigen/Eigenvalues>
 #include <algorithm>
 #include <cmath>
 #include <unordered_map>
@@ -65,6 +66,62 @@ bool invertPositiveDefinite(const Matrix6d& matrix, Matrix6d* inverse) {
   }
   *inverse = factorization.solve(Matrix6d::Identity());
   return inverse->allFinite();
+}
+
+// Map-scale structure: a delete-one-octant jackknife. Each octant of the overlap that holds at
+// least 2 % of the points is left out in turn and the linearised problem re-solved without it
+// (H - H_o) d_o = -g_o; the spread of the d_o is how much the parts of the map disagree (a warp
+// over the whole map, a dense map that covers only part of the scan), a scale no grid of
+// kMinBlocks blocks resolves. False with fewer than two such octants.
+bool octantJackknife(const WeightedCorrespondences& correspondences,
+                     const Eigen::Isometry3d& T_target_source, const PointList& moved,
+                     const std::vector<Vector6d>& scores, const Matrix6d& hessian,
+                     const Eigen::Vector3d& centre, Matrix6d* spread) {
+  std::vector<Matrix6d> octant_hessian(8, Matrix6d::Zero());
+  std::vector<Vector6d> octant_score(8, Vector6d::Zero());
+  std::vector<size_t> octant_points(8, 0);
+  for (size_t i = 0; i < moved.size(); ++i) {
+    const int octant = (moved[i].x() > centre.x()) + 2 * (moved[i].y() > centre.y()) +
+                       4 * (moved[i].z() > centre.z());
+    const PoseJacobian jacobian =
+        poseJacobian(T_target_source.linear() * correspondences.source[i]);
+    octant_hessian[octant].noalias() +=
+        correspondences.weight[i] * jacobian.transpose() *
+        shapeInverse(correspondences.normal[i], correspondences.inverse_kappa[i]) * jacobian;
+    octant_score[octant] += scores[i];
+    ++octant_points[octant];
+  }
+  std::vector<Vector6d> steps;
+  for (int octant = 0; octant < 8; ++octant) {
+    Matrix6d inverse;
+    if (octant_points[octant] < moved.size() / 50 ||
+        !invertPositiveDefinite(hessian - octant_hessian[octant], &inverse)) {
+      continue;
+    }
+    steps.push_back(-inverse * octant_score[octant]);
+  }
+  if (steps.size() < 2) return false;
+  const double count = static_cast<double>(steps.size());
+  Vector6d mean = Vector6d::Zero();
+  for (const Vector6d& step : steps) mean += step / count;
+  spread->setZero();
+  for (const Vector6d& step : steps) spread->noalias() += (step - mean) * (step - mean).transpose();
+  *spread *= (count - 1.0) / count;
+  return true;
+}
+
+// A covariance at least as large as both a and b: a + the positive part of (b - a), taken with
+// rotations scaled by `length` so that metres and radians weigh alike.
+Matrix6d upperBound(const Matrix6d& a, const Matrix6d& b, double length) {
+  Vector6d scale;
+  scale << 1.0, 1.0, 1.0, length, length, length;
+  const Matrix6d difference = scale.asDiagonal() * (b - a) * scale.asDiagonal();
+  const Eigen::SelfAdjointEigenSolver<Matrix6d> eigen(0.5 * (difference + difference.transpose()));
+  const Matrix6d positive = eigen.eigenvectors() *
+                            eigen.eigenvalues().cwiseMax(0.0).asDiagonal() *
+                            eigen.eigenvectors().transpose();
+  const Vector6d unscale = scale.cwiseInverse();
+  return a + unscale.asDiagonal() * positive * unscale.asDiagonal();
 }
 
 }  // namespace
@@ -138,8 +195,14 @@ bool computePoseCovariance(const WeightedCorrespondences& correspondences,
       cells = coarsen(cells);
     }
   }
+  Matrix6d map_scale;
+  const double radius = 0.5 * overlap.diagonal().norm();
+  const bool have_map_scale = radius > 0.0 && octantJackknife(correspondences, T_target_source,
+                                                               moved, scores, hessian,
+                                                               overlap.center(), &map_scale);
+  if (have_map_scale) structure = upperBound(structure, map_scale, radius);
   // The two terms overlap (the blocks' spread also holds the white noise the model term counts),
-  // so their sum errs on the safe side, by at most sqrt(2) when the residuals are independent.
+  // so their sum errs on the safe side: about 1.6x when the residuals are independent.
   *covariance = model + structure;
   *covariance = 0.5 * (*covariance + covariance->transpose()).eval();  // exact symmetry
   if (terms) {

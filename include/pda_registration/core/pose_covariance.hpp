@@ -11,6 +11,9 @@
 //    how far they disagree is how much the pose rests on regions that want different poses
 //    (correlated residuals: sampling, surface fit, non-rigid distortion). H here is the Student-t
 //    objective's exact Hessian (with the t-weights' derivative), as in an M-estimator's sandwich.
+//    The grid is as coarse as leaves kMinBlocks blocks; what the map's parts disagree on at a
+//    larger scale (a warp over the whole map, a map that covers part of the scan) comes from a
+//    delete-one-octant jackknife, and the structure term is the upper bound of the two.
 // See the README's covariance section for what it is calibrated against (pda_covariance_check).
 
 #include <Eigen/Geometry>
