@@ -5,6 +5,8 @@
 #include <cstdint>
 #include <unordered_map>
 
+#include "pda_registration/core/voxel_cell.hpp"
+
 namespace pda_registration {
 
 size_t removeNonFinitePoints(PointList* points) {
@@ -15,17 +17,6 @@ size_t removeNonFinitePoints(PointList* points) {
   return before - points->size();
 }
 
-namespace {
-// Packs three 21-bit voxel coordinates into one key; clouds wider than 2^21 voxels wrap around,
-// which only merges far-apart voxels in absurd configurations (a 1 cm grid spans 20 km).
-uint64_t voxelKey(const Point& p, double inverse_size) {
-  const auto cell = [inverse_size](double v) {
-    return static_cast<uint64_t>(static_cast<int64_t>(std::floor(v * inverse_size)) & 0x1FFFFF);
-  };
-  return (cell(p.x()) << 42) | (cell(p.y()) << 21) | cell(p.z());
-}
-}  // namespace
-
 PointList voxelDownsample(const PointList& points, double voxel_size) {
   if (!(voxel_size > 0.0) || points.empty()) return points;
   const double inverse_size = 1.0 / voxel_size;
@@ -34,7 +25,7 @@ PointList voxelDownsample(const PointList& points, double voxel_size) {
   PointList sums;
   std::vector<int> counts;
   for (const Point& p : points) {
-    const auto inserted = slot_of_voxel.emplace(voxelKey(p, inverse_size), sums.size());
+    const auto inserted = slot_of_voxel.emplace(voxelCellKey(voxelCellOf(p, inverse_size)), sums.size());
     if (inserted.second) {
       sums.push_back(p);
       counts.push_back(1);

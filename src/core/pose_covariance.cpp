@@ -3,12 +3,14 @@
 #include <Eigen/Cholesky>
 #include <Eigen/Eigenvalues>
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <unordered_map>
 #include <vector>
 
 #include "pda_registration/core/noise_model.hpp"
 #include "pda_registration/core/pose_jacobian.hpp"
+#include "pda_registration/core/voxel_cell.hpp"
 
 namespace pda_registration {
 namespace {
@@ -20,42 +22,35 @@ constexpr size_t kMinBlocks = 40;
 // The finest grid: the overlap's diagonal / 64. Coarser grids double the cell edge.
 constexpr int kFinestDivisions = 64;
 
-struct Cell {
-  long long x, y, z;
-  bool operator==(const Cell& other) const {
-    return x == other.x && y == other.y && z == other.z;
-  }
+// Scores summed per block. Cells keep their coordinates beside the key for coarsening (the
+// grid spans at most a few hundred cells per axis, so keys never wrap onto each other).
+struct BlockScore {
+  VoxelCell cell;
+  Vector6d score = Vector6d::Zero();
 };
+using BlockScores = std::unordered_map<uint64_t, BlockScore>;
 
-struct CellHash {
-  size_t operator()(const Cell& c) const {
-    return static_cast<size_t>(c.x * 73856093LL ^ c.y * 19349663LL ^ c.z * 83492791LL);
-  }
-};
-
-using CellScores = std::unordered_map<Cell, Vector6d, CellHash>;
-
-long long floorDivide(long long value, long long divisor) {
-  return value >= 0 ? value / divisor : -((-value + divisor - 1) / divisor);
+void addScore(const VoxelCell& cell, const Vector6d& score, BlockScores* blocks) {
+  BlockScore& block = (*blocks)[voxelCellKey(cell)];
+  block.cell = cell;
+  block.score += score;
 }
 
 // The same scores summed over cells twice as large along each axis.
-CellScores coarsen(const CellScores& fine) {
-  CellScores coarse;
-  for (const auto& [cell, score] : fine) {
-    const Cell parent{floorDivide(cell.x, 2), floorDivide(cell.y, 2), floorDivide(cell.z, 2)};
-    auto it = coarse.emplace(parent, Vector6d::Zero()).first;
-    it->second += score;
-  }
+BlockScores coarsen(const BlockScores& fine) {
+  BlockScores coarse;
+  for (const auto& entry : fine) addScore(parentCell(entry.second.cell), entry.second.score, &coarse);
   return coarse;
 }
 
 // sum_b g_b g_b^T with the small-sample correction B / (B - 6).
-Matrix6d scoreSpread(const CellScores& cells) {
+Matrix6d scoreSpread(const BlockScores& blocks) {
   Matrix6d spread = Matrix6d::Zero();
-  for (const auto& entry : cells) spread.noalias() += entry.second * entry.second.transpose();
-  const double blocks = static_cast<double>(cells.size());
-  return blocks / (blocks - 6.0) * spread;
+  for (const auto& entry : blocks) {
+    spread.noalias() += entry.second.score * entry.second.score.transpose();
+  }
+  const double count = static_cast<double>(blocks.size());
+  return count / (count - 6.0) * spread;
 }
 
 bool invertPositiveDefinite(const Matrix6d& matrix, Matrix6d* inverse) {
@@ -68,37 +63,32 @@ bool invertPositiveDefinite(const Matrix6d& matrix, Matrix6d* inverse) {
   return inverse->allFinite();
 }
 
+// What one octant of the overlap contributes to the Hessian and the gradient.
+struct OctantSums {
+  Matrix6d hessian = Matrix6d::Zero();
+  Vector6d score = Vector6d::Zero();
+  size_t points = 0;
+};
+
+int octantOf(const Point& p, const Eigen::Vector3d& centre) {
+  return (p.x() > centre.x()) + 2 * (p.y() > centre.y()) + 4 * (p.z() > centre.z());
+}
+
 // Map-scale structure: a delete-one-octant jackknife. Each octant of the overlap that holds at
 // least 2 % of the points is left out in turn and the linearised problem re-solved without it
 // (H - H_o) d_o = -g_o; the spread of the d_o is how much the parts of the map disagree (a warp
 // over the whole map, a dense map that covers only part of the scan), a scale no grid of
 // kMinBlocks blocks resolves. False with fewer than two such octants.
-bool octantJackknife(const WeightedCorrespondences& correspondences,
-                     const Eigen::Isometry3d& T_target_source, const PointList& moved,
-                     const std::vector<Vector6d>& scores, const Matrix6d& hessian,
-                     const Eigen::Vector3d& centre, Matrix6d* spread) {
-  std::vector<Matrix6d> octant_hessian(8, Matrix6d::Zero());
-  std::vector<Vector6d> octant_score(8, Vector6d::Zero());
-  std::vector<size_t> octant_points(8, 0);
-  for (size_t i = 0; i < moved.size(); ++i) {
-    const int octant = (moved[i].x() > centre.x()) + 2 * (moved[i].y() > centre.y()) +
-                       4 * (moved[i].z() > centre.z());
-    const PoseJacobian jacobian =
-        poseJacobian(T_target_source.linear() * correspondences.source[i]);
-    octant_hessian[octant].noalias() +=
-        correspondences.weight[i] * jacobian.transpose() *
-        shapeInverse(correspondences.normal[i], correspondences.inverse_kappa[i]) * jacobian;
-    octant_score[octant] += scores[i];
-    ++octant_points[octant];
-  }
+bool octantJackknife(const std::array<OctantSums, 8>& octants, const Matrix6d& hessian,
+                     size_t total_points, Matrix6d* spread) {
   std::vector<Vector6d> steps;
-  for (int octant = 0; octant < 8; ++octant) {
+  for (const OctantSums& octant : octants) {
     Matrix6d inverse;
-    if (octant_points[octant] < moved.size() / 50 ||
-        !invertPositiveDefinite(hessian - octant_hessian[octant], &inverse)) {
+    if (octant.points < total_points / 50 ||
+        !invertPositiveDefinite(hessian - octant.hessian, &inverse)) {
       continue;
     }
-    steps.push_back(-inverse * octant_score[octant]);
+    steps.push_back(-inverse * octant.score);
   }
   if (steps.size() < 2) return false;
   const double count = static_cast<double>(steps.size());
@@ -133,34 +123,47 @@ bool computePoseCovariance(const WeightedCorrespondences& correspondences,
   covariance->setZero();
   if (terms) *terms = PoseCovarianceTerms();
   if (correspondences.size() < 3 || !(sigma_squared > 0.0)) return false;
-  // Hessian of the EM objective and every point's score (the gradient of its term) at the optimum.
-  Matrix6d hessian = Matrix6d::Zero(), robust_hessian = Matrix6d::Zero();
-  std::vector<Vector6d> scores(correspondences.size());
+  // The moved points and the overlap's box, on which the block grid and the octants hang.
   PointList moved(correspondences.size());
   Eigen::AlignedBox3d overlap;
   for (size_t i = 0; i < correspondences.size(); ++i) {
     moved[i] = T_target_source * correspondences.source[i];
+    overlap.extend(moved[i]);
+  }
+  const double finest_edge = overlap.diagonal().norm() / kFinestDivisions;
+  const Eigen::Vector3d centre = overlap.center();
+
+  // The Hessian of the EM objective and every point's score (the gradient of its term) at the
+  // optimum, summed per finest block and per octant.
+  Matrix6d hessian = Matrix6d::Zero(), robust_hessian = Matrix6d::Zero();
+  BlockScores blocks;
+  std::array<OctantSums, 8> octants;
+  for (size_t i = 0; i < correspondences.size(); ++i) {
     const PoseJacobian jacobian =
         poseJacobian(T_target_source.linear() * correspondences.source[i]);
     const Eigen::Matrix3d shape =
         shapeInverse(correspondences.normal[i], correspondences.inverse_kappa[i]);
-    const Eigen::Matrix<double, 6, 3> weighted =
-        correspondences.weight[i] * jacobian.transpose() * shape;
     const Eigen::Vector3d residual = correspondences.target_mean[i] - moved[i];
-    hessian.noalias() += weighted * jacobian;
-    scores[i] = weighted * residual;
-    // The t-weight's own derivative: d(w r)/dr = w (I - 2 w / (nu + 3) M^-1 r r^T / sigma^2).
+    const double weight = correspondences.weight[i];
+    const Matrix6d point_hessian = weight * jacobian.transpose() * shape * jacobian;
     const Vector6d pull = jacobian.transpose() * shape * residual;
-    const double t_weight =
-        (nu + 3.0) / (nu + shapedSquaredNorm(residual, correspondences.normal[i],
-                                             correspondences.inverse_kappa[i]) /
-                               sigma_squared);
-    robust_hessian.noalias() += weighted * jacobian;
+    const Vector6d score = weight * pull;
+    hessian.noalias() += point_hessian;
+    robust_hessian.noalias() += point_hessian;
+    // The t-weight's own derivative: d(w r)/dr = w (I - 2 w / (nu + 3) M^-1 r r^T / sigma^2).
     if (std::isfinite(nu)) {
-      robust_hessian.noalias() -= 2.0 * correspondences.weight[i] * t_weight /
-                                  ((nu + 3.0) * sigma_squared) * pull * pull.transpose();
+      const double t_weight =
+          (nu + 3.0) / (nu + shapedSquaredNorm(residual, correspondences.normal[i],
+                                               correspondences.inverse_kappa[i]) /
+                                 sigma_squared);
+      robust_hessian.noalias() -=
+          2.0 * weight * t_weight / ((nu + 3.0) * sigma_squared) * pull * pull.transpose();
     }
-    overlap.extend(moved[i]);
+    if (finest_edge > 0.0) addScore(voxelCellOf(moved[i], 1.0 / finest_edge), score, &blocks);
+    OctantSums& octant = octants[octantOf(moved[i], centre)];
+    octant.hessian.noalias() += point_hessian;
+    octant.score += score;
+    ++octant.points;
   }
   Matrix6d hessian_inverse;
   if (!invertPositiveDefinite(hessian, &hessian_inverse)) return false;
@@ -175,32 +178,20 @@ bool computePoseCovariance(const WeightedCorrespondences& correspondences,
   // sampled a little off, a warped wall, the target's own noise under several source points), so
   // a block, not a point, is one independent constraint. Blocks as large as the data allows
   // (at least kMinBlocks of them) catch the longest such correlation.
-  const double finest_edge = overlap.diagonal().norm() / kFinestDivisions;
   Matrix6d structure = Matrix6d::Zero();
-  size_t blocks = 0;
+  size_t block_count = 0;
   double block_edge = 0.0;
-  if (finest_edge > 0.0) {
-    CellScores cells;
-    for (size_t i = 0; i < moved.size(); ++i) {
-      const Cell cell{static_cast<long long>(std::floor(moved[i].x() / finest_edge)),
-                      static_cast<long long>(std::floor(moved[i].y() / finest_edge)),
-                      static_cast<long long>(std::floor(moved[i].z() / finest_edge))};
-      auto it = cells.emplace(cell, Vector6d::Zero()).first;
-      it->second += scores[i];
-    }
-    for (double edge = finest_edge; cells.size() >= kMinBlocks; edge *= 2.0) {
-      structure = bread * scoreSpread(cells) * bread;
-      blocks = cells.size();
-      block_edge = edge;
-      cells = coarsen(cells);
-    }
+  for (double edge = finest_edge; blocks.size() >= kMinBlocks; edge *= 2.0) {
+    structure = bread * scoreSpread(blocks) * bread;
+    block_count = blocks.size();
+    block_edge = edge;
+    blocks = coarsen(blocks);
   }
   Matrix6d map_scale;
   const double radius = 0.5 * overlap.diagonal().norm();
-  const bool have_map_scale = radius > 0.0 && octantJackknife(correspondences, T_target_source,
-                                                               moved, scores, hessian,
-                                                               overlap.center(), &map_scale);
-  if (have_map_scale) structure = upperBound(structure, map_scale, radius);
+  if (radius > 0.0 && octantJackknife(octants, hessian, moved.size(), &map_scale)) {
+    structure = upperBound(structure, map_scale, radius);
+  }
   // The two terms overlap (the blocks' spread also holds the white noise the model term counts),
   // so their sum errs on the safe side: about 1.6x when the residuals are independent.
   *covariance = model + structure;
@@ -208,11 +199,12 @@ bool computePoseCovariance(const WeightedCorrespondences& correspondences,
   if (terms) {
     terms->model = model;
     terms->structure = structure;
-    terms->blocks = blocks;
+    terms->blocks = block_count;
     terms->block_edge = block_edge;
   }
   return covariance->allFinite();
 }
+
 ExpectedError expectedError(const Eigen::Matrix<double, 6, 6>& covariance) {
   return {std::sqrt(std::max(0.0, covariance.topLeftCorner<3, 3>().trace())),
           std::sqrt(std::max(0.0, covariance.bottomRightCorner<3, 3>().trace()))};

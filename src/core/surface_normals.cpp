@@ -7,15 +7,6 @@
 namespace pda_registration {
 namespace {
 
-// 21 bits per axis; far-apart cells that wrap onto one key share an entry (the first one's).
-template <class Cell>
-uint64_t keyOf(const Cell& c) {
-  const auto bits = [](int64_t v) { return static_cast<uint64_t>(v) & 0x1FFFFF; };
-  return (bits(c.x) << 42) | (bits(c.y) << 21) | bits(c.z);
-}
-
-int64_t floorHalf(int64_t v) { return v >= 0 ? v / 2 : -((-v + 1) / 2); }
-
 // Planar voxels only: a clear smallest axis, and points that spread over the voxel in both
 // in-plane directions (the second axis at least a tenth of the first in variance, ~1/3 in extent).
 // A lidar scan line thickened by range noise is a thin strip: its "normal" is the normal of the
@@ -55,11 +46,9 @@ void SurfaceNormalMap::add(const PointList& points, size_t from) {
   touched.reserve(points.size() - from);
   for (size_t i = from; i < points.size(); ++i) {
     const Point& p = points[i];
-    Cell c;
-    c.x = static_cast<int64_t>(std::floor(p.x() * inverse_size));
-    c.y = static_cast<int64_t>(std::floor(p.y() * inverse_size));
-    c.z = static_cast<int64_t>(std::floor(p.z() * inverse_size));
-    const uint64_t key = keyOf(c);
+    const Cell c = voxelCellOf(p, inverse_size);
+    // Far-apart cells that wrap onto one key (voxel_cell.hpp) share an entry (the first one's).
+    const uint64_t key = voxelCellKey(c);
     Moments& m = finest.moments[key];
     if (m.count == 0.0) m.cell = c;
     const Eigen::Vector3d local = p - Eigen::Vector3d(c.x, c.y, c.z) * size;
@@ -92,16 +81,12 @@ void SurfaceNormalMap::refit(int level, std::vector<uint64_t> keys) {
     parents.reserve(keys.size());
     for (const uint64_t key : keys) {
       const Cell& c = here.moments.at(key).cell;
-      Cell parent;
-      parent.x = floorHalf(c.x);
-      parent.y = floorHalf(c.y);
-      parent.z = floorHalf(c.z);
-      parents.push_back(parent);
+      parents.push_back(parentCell(c));
     }
     std::vector<uint64_t> parent_keys;
     parent_keys.reserve(parents.size());
     for (const Cell& parent : parents) {
-      const uint64_t parent_key = keyOf(parent);
+      const uint64_t parent_key = voxelCellKey(parent);
       Moments merged;
       merged.cell = parent;
       for (int child = 0; child < 8; ++child) {
@@ -109,7 +94,7 @@ void SurfaceNormalMap::refit(int level, std::vector<uint64_t> keys) {
         c.x = 2 * parent.x + (child & 1);
         c.y = 2 * parent.y + ((child >> 1) & 1);
         c.z = 2 * parent.z + ((child >> 2) & 1);
-        const auto it = here.moments.find(keyOf(c));
+        const auto it = here.moments.find(voxelCellKey(c));
         if (it == here.moments.end() || !(it->second.cell == c)) continue;
         const Moments& m = it->second;
         const Eigen::Vector3d shift = Eigen::Vector3d(c.x - 2 * parent.x, c.y - 2 * parent.y,
@@ -141,11 +126,8 @@ size_t SurfaceNormalMap::voxelsWithNormal() const {
 Eigen::Vector3d SurfaceNormalMap::normalAt(const Point& p) const {
   for (const Level& level : levels_) {
     const double inverse_size = 1.0 / level.voxel_size;
-    Cell c;
-    c.x = static_cast<int64_t>(std::floor(p.x() * inverse_size));
-    c.y = static_cast<int64_t>(std::floor(p.y() * inverse_size));
-    c.z = static_cast<int64_t>(std::floor(p.z() * inverse_size));
-    const auto it = level.normals.find(keyOf(c));
+    const Cell c = voxelCellOf(p, inverse_size);
+    const auto it = level.normals.find(voxelCellKey(c));
     if (it != level.normals.end()) return it->second.cast<double>();
   }
   return Eigen::Vector3d::Zero();

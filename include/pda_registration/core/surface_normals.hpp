@@ -16,6 +16,7 @@
 #include <vector>
 
 #include "pda_registration/core/point_list.hpp"
+#include "pda_registration/core/voxel_cell.hpp"
 
 namespace pda_registration {
 
@@ -37,10 +38,7 @@ class SurfaceNormalMap {
   size_t voxelsWithNormal() const;
 
  private:
-  struct Cell {
-    int64_t x = 0, y = 0, z = 0;
-    bool operator==(const Cell& o) const { return x == o.x && y == o.y && z == o.z; }
-  };
+  using Cell = VoxelCell;
   // First and second moments of a voxel's points, relative to the voxel's own corner so that
   // large coordinates do not cancel catastrophically in the covariance.
   struct Moments {
