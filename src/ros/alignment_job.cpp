@@ -92,10 +92,7 @@ void AlignmentJob::run(const SparseJob& job, const LiveParameters& live) {
     ++s.aligned;
     s.have_result = true;
     s.last_result = result;
-    s.expected_error = expectedError(c_.settings->dense_is_target
-                                         ? result.covariance
-                                         : invertedPoseCovariance(result.T_target_source,
-                                                                  result.covariance));
+    s.expected_error = expectedError(publishedCovariance(result));
     s.last_accepted = verdict.accepted;
     s.indexed_points = result.target_points_used;
     s.target_cropped = result.target_cropped;

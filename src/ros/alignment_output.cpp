@@ -5,6 +5,13 @@
 
 namespace pda_registration {
 
+Eigen::Matrix<double, 6, 6> AlignmentJob::publishedCovariance(
+    const RegistrationResult& result) const {
+  return c_.settings->dense_is_target
+             ? result.covariance
+             : invertedPoseCovariance(result.T_target_source, result.covariance);
+}
+
 void AlignmentJob::publish(const Accepted& a) {
   const NodeSettings& settings = *c_.settings;
   const RegistrationResult& result = *a.result;
@@ -17,9 +24,7 @@ void AlignmentJob::publish(const Accepted& a) {
   output.sparse_frame = sparse_frame;
   output.T_dense_sparse =
       settings.dense_is_target ? result.T_target_source : result.T_target_source.inverse();
-  output.covariance = settings.dense_is_target
-                          ? result.covariance
-                          : invertedPoseCovariance(result.T_target_source, result.covariance);
+  output.covariance = publishedCovariance(result);
   output.target_frame = settings.dense_is_target ? dense_frame : sparse_frame;
   PointList aligned;
   if (c_.publisher->hasAlignedCloudSubscribers()) {

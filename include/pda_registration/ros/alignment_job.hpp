@@ -53,6 +53,9 @@ class AlignmentJob {
   };
   /// ~transform, ~pose, ~aligned_cloud, ~associations and the tf edge (alignment_output.cpp).
   void publish(const Accepted& accepted);
+  /// The result's covariance as ~pose carries it: in the dense map's frame, whichever cloud
+  /// was the target.
+  Eigen::Matrix<double, 6, 6> publishedCovariance(const RegistrationResult& result) const;
 
   AlignmentJobContext c_;
   PdaRegistration sparse_target_;  // the registration when the sparse cloud is the target
