@@ -49,14 +49,19 @@ struct Trial {
 
 int fail(const std::string& message) { return reportError("pda_covariance_check", message); }
 
-std::string ratioText(const std::vector<double>& errors, const std::vector<double>& sigmas) {
+// The median of |error| / sigma over trials with a sigma; NaN when there is none.
+double medianRatio(const std::vector<double>& errors, const std::vector<double>& sigmas) {
   std::vector<double> ratios;
   for (size_t i = 0; i < errors.size(); ++i) {
     if (sigmas[i] > 0.0) ratios.push_back(errors[i] / sigmas[i]);
   }
-  if (ratios.empty()) return "-";
+  return ratios.empty() ? std::nan("") : median(ratios);
+}
+
+std::string ratioText(double ratio) {
+  if (std::isnan(ratio)) return "-";
   std::ostringstream text;
-  text << std::fixed << std::setprecision(2) << median(ratios);
+  text << std::fixed << std::setprecision(2) << ratio;
   return text.str();
 }
 
@@ -152,19 +157,16 @@ int main(int argc, char** argv) {
         rs.push_back(t.rotation_sigma);
         share.push_back(t.covariance_share);
       }
-      const std::string t_ratio = ratioText(te, ts), r_ratio = ratioText(re, rs);
-      auto within = [&](const std::string& ratio) {
-        if (ratio == "-") return false;
-        const double value = std::stod(ratio);
-        return value >= low && value <= high;
-      };
+      const double t_ratio = medianRatio(te, ts), r_ratio = medianRatio(re, rs);
+      // NaN (no sigma) is never within.
+      auto within = [&](double ratio) { return ratio >= low && ratio <= high; };
       std::ostringstream row;
       row << std::fixed << "| " << name << " | " << std::setprecision(0) << level.degrees << "°/"
           << std::setprecision(2) << level.metres << " m | " << te.size() << "/" << trials << " | "
           << std::setprecision(3) << 100.0 * median(te) << " | " << 100.0 * median(ts) << " | "
-          << t_ratio << " | " << std::setprecision(4) << kDeg * median(re) << " | "
+          << ratioText(t_ratio) << " | " << std::setprecision(4) << kDeg * median(re) << " | "
           << kDeg * median(rs) << " | "
-          << r_ratio << " | " << (within(t_ratio) && within(r_ratio) ? "yes" : "**no**")
+          << ratioText(r_ratio) << " | " << (within(t_ratio) && within(r_ratio) ? "yes" : "**no**")
           << " | " << std::setprecision(1) << 100.0 * median(share) << " % |\n";
       std::cout << row.str();
     }
