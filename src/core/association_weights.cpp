@@ -64,11 +64,29 @@ WeightedCorrespondences computeWeightedCorrespondences(const PointList& source,
                                                        const Eigen::Isometry3d& T_target_source,
                                                        double nu, double sigma_squared,
                                                        int threads) {
+  EStepBuffers buffers;
+  WeightedCorrespondences out;
+  computeWeightedCorrespondences(source, candidates, shapes, T_target_source, nu, sigma_squared,
+                                 threads, &buffers, &out);
+  return out;
+}
+
+void computeWeightedCorrespondences(const PointList& source, const CandidateSets& candidates,
+                                    const NoiseShapes& shapes,
+                                    const Eigen::Isometry3d& T_target_source, double nu,
+                                    double sigma_squared, int threads, EStepBuffers* buffers,
+                                    WeightedCorrespondences* out_correspondences) {
   const size_t n = candidates.sourceCount();
   // Per-source results are written to fixed slots in parallel and compacted serially, so the
   // sums (and therefore the estimate) are the same for any thread count.
-  PointList means(n, Point::Zero());
-  std::vector<double> weights(n, 0.0), across(n, 0.0), along(n, 0.0);
+  PointList& means = buffers->means;
+  std::vector<double>& weights = buffers->weights;
+  std::vector<double>& across = buffers->across;
+  std::vector<double>& along = buffers->along;
+  means.assign(n, Point::Zero());
+  weights.assign(n, 0.0);
+  across.assign(n, 0.0);
+  along.assign(n, 0.0);
 
 #pragma omp parallel num_threads(std::max(threads, 1))
   {
@@ -111,18 +129,16 @@ WeightedCorrespondences computeWeightedCorrespondences(const PointList& source,
     }
   }
 
-  WeightedCorrespondences out;
+  WeightedCorrespondences& out = *out_correspondences;
   out.sampling = shapes.sampling;
-  const size_t used = static_cast<size_t>(
-      std::count_if(weights.begin(), weights.end(), [](double w) { return w > 0.0; }));
-  out.source_index.reserve(used);
-  out.source.reserve(used);
-  out.target_mean.reserve(used);
-  out.weight.reserve(used);
-  out.normal.reserve(used);
-  out.inverse_kappa.reserve(used);
-  out.spread_across.reserve(used);
-  out.spread_along.reserve(used);
+  out.source_index.clear();
+  out.source.clear();
+  out.target_mean.clear();
+  out.weight.clear();
+  out.normal.clear();
+  out.inverse_kappa.clear();
+  out.spread_across.clear();
+  out.spread_along.clear();
   for (size_t j = 0; j < n; ++j) {
     if (!(weights[j] > 0.0)) continue;
     out.source_index.push_back(j);
@@ -134,7 +150,6 @@ WeightedCorrespondences computeWeightedCorrespondences(const PointList& source,
     out.spread_across.push_back(across[j]);
     out.spread_along.push_back(along[j]);
   }
-  return out;
 }
 
 Associations computeAssociations(const PointList& source, const CandidateSets& candidates,

@@ -13,12 +13,24 @@ size_t CandidateSets::sourcePointsWithCandidates() const {
 CandidateSets findCandidateSets(const TargetIndex& target, const PointList& source,
                                 const Eigen::Isometry3d& T_target_source, int k, double radius,
                                 int threads) {
+  CandidateSearchBuffers buffers;
+  CandidateSets sets;
+  findCandidateSets(target, source, T_target_source, k, radius, threads, &buffers, &sets);
+  return sets;
+}
+
+void findCandidateSets(const TargetIndex& target, const PointList& source,
+                       const Eigen::Isometry3d& T_target_source, int k, double radius, int threads,
+                       CandidateSearchBuffers* buffers, CandidateSets* sets) {
   const size_t n = source.size();
   const size_t capacity = static_cast<size_t>(std::max(k, 0));
   // Search into fixed-size slots first (parallel, no allocation per point), then compact.
-  std::vector<size_t> slots(n * capacity);
-  std::vector<double> squared_distances(n * capacity);
-  std::vector<size_t> found(n, 0);
+  std::vector<size_t>& slots = buffers->slots;
+  std::vector<double>& squared_distances = buffers->squared_distances;
+  std::vector<size_t>& found = buffers->found;
+  slots.resize(n * capacity);
+  squared_distances.resize(n * capacity);
+  found.resize(n);
 
 #pragma omp parallel for schedule(dynamic, 256) num_threads(std::max(threads, 1))
   for (long long j = 0; j < static_cast<long long>(n); ++j) {
@@ -27,19 +39,19 @@ CandidateSets findCandidateSets(const TargetIndex& target, const PointList& sour
                                           &squared_distances[j * capacity]);
   }
 
-  CandidateSets sets;
-  sets.offsets.resize(n + 1, 0);
-  for (size_t j = 0; j < n; ++j) sets.offsets[j + 1] = sets.offsets[j] + found[j];
-  sets.target_indices.resize(sets.offsets[n]);
-  sets.points.resize(sets.offsets[n]);
+  sets->offsets.resize(n + 1);
+  sets->offsets[0] = 0;
+  for (size_t j = 0; j < n; ++j) sets->offsets[j + 1] = sets->offsets[j] + found[j];
+  sets->target_indices.resize(sets->offsets[n]);
+  sets->points.resize(sets->offsets[n]);
   const PointList& target_points = target.points();
-  for (size_t j = 0; j < n; ++j) {
-    std::copy_n(&slots[j * capacity], found[j], &sets.target_indices[sets.offsets[j]]);
-    for (size_t c = sets.offsets[j]; c < sets.offsets[j + 1]; ++c) {
-      sets.points[c] = target_points[sets.target_indices[c]];
+#pragma omp parallel for schedule(static) num_threads(std::max(threads, 1))
+  for (long long j = 0; j < static_cast<long long>(n); ++j) {
+    std::copy_n(&slots[j * capacity], found[j], &sets->target_indices[sets->offsets[j]]);
+    for (size_t c = sets->offsets[j]; c < sets->offsets[j + 1]; ++c) {
+      sets->points[c] = target_points[sets->target_indices[c]];
     }
   }
-  return sets;
 }
 
 }  // namespace pda_registration

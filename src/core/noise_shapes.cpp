@@ -48,14 +48,27 @@ bool usesSamplingModel(const RegistrationParameters& p) {
 NoiseShapes makeNoiseShapes(const PointList& normals, const std::vector<double>& spread,
                             double sigma_squared, const RegistrationParameters& p) {
   NoiseShapes shapes;
-  if (!(p.surface_anisotropy > 1.0)) return shapes;  // the paper's isotropic model
+  makeNoiseShapes(normals, spread, sigma_squared, p, &shapes);
+  return shapes;
+}
+
+void makeNoiseShapes(const PointList& normals, const std::vector<double>& spread,
+                     double sigma_squared, const RegistrationParameters& p,
+                     NoiseShapes* out) {
+  NoiseShapes& shapes = *out;
+  shapes.sampling = false;
+  if (!(p.surface_anisotropy > 1.0)) {  // the paper's isotropic model
+    shapes.normal.clear();
+    shapes.inverse_kappa.clear();
+    return;
+  }
   shapes.normal = normals;
   shapes.inverse_kappa.assign(normals.size(), 1.0);
   if (!usesSamplingModel(p)) {
     for (size_t j = 0; j < normals.size(); ++j) {
       if (normals[j].squaredNorm() > 0.0) shapes.inverse_kappa[j] = 1.0 / p.surface_anisotropy;
     }
-    return shapes;
+    return;
   }
   shapes.sampling = true;
   // Along the surface: the larger of the constant kappa's sigma^2 kappa and sigma^2 + s_j^2.
@@ -68,7 +81,6 @@ NoiseShapes makeNoiseShapes(const PointList& normals, const std::vector<double>&
                                   ? std::min(constant_inverse_kappa, sampling_inverse_kappa)
                                   : sampling_inverse_kappa;
   }
-  return shapes;
 }
 
 }  // namespace pda_registration

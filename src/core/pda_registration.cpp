@@ -58,7 +58,7 @@ double candidateRadius(const RegistrationParameters& p, double sigma_squared) {
 }
 
 bool runMStep(const WeightedCorrespondences& correspondences, const RegistrationParameters& p,
-              Eigen::Isometry3d* T) {
+              GaussNewtonBuffers* buffers, Eigen::Isometry3d* T) {
   switch (p.solver) {
     case MStepSolver::kClosedForm:
       return solveClosedForm(correspondences, T);
@@ -69,17 +69,23 @@ bool runMStep(const WeightedCorrespondences& correspondences, const Registration
   }
   // The EM loop checks convergence itself; inner steps only need to be a little finer.
   return solveGaussNewton(correspondences, p.solver_max_iterations, 0.1 * p.translation_epsilon,
-                          0.1 * p.rotation_epsilon, T);
+                          0.1 * p.rotation_epsilon, p.threads, T, buffers);
 }
 
 // The target surface normal at every moved source point (zero where unknown).
-PointList lookupNormals(const SurfaceNormalMap& map, const PointList& source,
-                        const Eigen::Isometry3d& T, int threads) {
-  PointList normals(source.size());
+void lookupNormals(const SurfaceNormalMap& map, const PointList& source,
+                   const Eigen::Isometry3d& T, int threads, PointList* normals) {
+  normals->resize(source.size());
 #pragma omp parallel for schedule(static) num_threads(std::max(threads, 1))
   for (long long j = 0; j < static_cast<long long>(source.size()); ++j) {
-    normals[j] = map.normalAt(T * source[j]);
+    (*normals)[j] = map.normalAt(T * source[j]);
   }
+}
+
+PointList lookupNormals(const SurfaceNormalMap& map, const PointList& source,
+                        const Eigen::Isometry3d& T, int threads) {
+  PointList normals;
+  lookupNormals(map, source, T, threads, &normals);
   return normals;
 }
 
@@ -109,23 +115,19 @@ void fillInlierStatistics(const PointList& source, const CandidateSets& candidat
 }
 
 // What the noise shapes of one run are made from: the target normals at the moved source points
-// (not needed by the isotropic model) and the candidates' sampling spread (sampling model only).
-struct ShapeInputs {
-  PointList normals;
-  std::vector<double> spread;
-  double thickness = 0.0;  // sigma^2's floor from the target's own noise (sampling model)
-};
-
-ShapeInputs shapeInputs(const SurfaceNormalMap& normal_map, const PointList& source,
-                        const CandidateSets& candidates, const Eigen::Isometry3d& T,
-                        const RegistrationParameters& p) {
-  ShapeInputs inputs;
-  if (p.surface_anisotropy > 1.0) inputs.normals = lookupNormals(normal_map, source, T, p.threads);
-  if (usesSamplingModel(p)) {
-    inputs.spread = candidateSpread(candidates, p.threads);
-    inputs.thickness = targetThickness(candidates, inputs.normals);
-  }
-  return inputs;
+// (not needed by the isotropic model: left empty) and the candidates' sampling spread (sampling
+// model only). Returns the target's thickness, sigma^2's floor from the target's own noise
+// (sampling model; 0 otherwise).
+double computeShapeInputs(const SurfaceNormalMap& normal_map, const PointList& source,
+                          const CandidateSets& candidates, const Eigen::Isometry3d& T,
+                          const RegistrationParameters& p, PointList* normals,
+                          std::vector<double>* spread) {
+  normals->clear();
+  spread->clear();
+  if (p.surface_anisotropy > 1.0) lookupNormals(normal_map, source, T, p.threads, normals);
+  if (!usesSamplingModel(p)) return 0.0;
+  *spread = candidateSpread(candidates, p.threads);
+  return targetThickness(candidates, *normals);
 }
 
 // The part of the EM state that carries over from run to run.
@@ -134,28 +136,32 @@ struct EmState {
   double sigma_squared = 0.0;  // 0 until the first run estimates it
 };
 
-// One run: EM on fixed candidate sets until a step is below the epsilons or max_em_iterations.
-// Returns false when the M-step cannot solve.
-bool runEm(const PointList& source, const CandidateSets& candidates,
-           const SurfaceNormalMap& normal_map, const RegistrationParameters& p, EmState* state,
+// One run: EM on the workspace's candidate sets (fixed during the run) until a step is below the
+// epsilons or max_em_iterations. Returns false when the M-step cannot solve.
+bool runEm(const PointList& source, const SurfaceNormalMap& normal_map,
+           const RegistrationParameters& p, RegistrationWorkspace* workspace, EmState* state,
            bool* settled, int* em_iterations) {
   const bool estimate_sigma = p.sigma_mode == SigmaMode::kEstimated;
-  const ShapeInputs inputs = shapeInputs(normal_map, source, candidates, state->T, p);
+  const CandidateSets& candidates = workspace->candidates;
+  const double thickness = computeShapeInputs(normal_map, source, candidates, state->T, p,
+                                              &workspace->normals, &workspace->spread);
   // A floor keeps the t-weights defined when the clouds match exactly (sigma -> 0); the sampling
   // model's is the target's own thickness about its surface.
-  const double sigma_squared_floor = std::max(std::pow(1e-6 * p.radius, 2), inputs.thickness);
+  const double sigma_squared_floor = std::max(std::pow(1e-6 * p.radius, 2), thickness);
   if (estimate_sigma && state->sigma_squared == 0.0) {
     state->sigma_squared =
         std::max(initialSigmaSquared(source, candidates, state->T), sigma_squared_floor);
   }
   *settled = false;
   for (int iteration = 0; iteration < p.max_em_iterations; ++iteration) {
-    const NoiseShapes shapes =
-        makeNoiseShapes(inputs.normals, inputs.spread, state->sigma_squared, p);
-    const WeightedCorrespondences correspondences = computeWeightedCorrespondences(
-        source, candidates, shapes, state->T, p.nu, state->sigma_squared, p.threads);
+    makeNoiseShapes(workspace->normals, workspace->spread, state->sigma_squared, p,
+                    &workspace->shapes);
+    computeWeightedCorrespondences(source, candidates, workspace->shapes, state->T, p.nu,
+                                   state->sigma_squared, p.threads, &workspace->e_step,
+                                   &workspace->correspondences);
+    const WeightedCorrespondences& correspondences = workspace->correspondences;
     Eigen::Isometry3d T_next = state->T;
-    if (!runMStep(correspondences, p, &T_next)) return false;
+    if (!runMStep(correspondences, p, &workspace->gauss_newton, &T_next)) return false;
     if (estimate_sigma) {
       state->sigma_squared =
           std::max(estimateSigmaSquared(correspondences, T_next), sigma_squared_floor);
@@ -172,18 +178,25 @@ bool runEm(const PointList& source, const CandidateSets& candidates,
 }
 
 // Covariance, inlier statistics and the degeneracy check at the final estimate.
-void fillFinalStatistics(const PointList& source, const CandidateSets& candidates,
-                         const SurfaceNormalMap& normal_map, const RegistrationParameters& p,
-                         const EmState& state, RegistrationResult* result,
+// Uses the workspace's candidate sets (for every source point) and its memory.
+void fillFinalStatistics(const PointList& source, const SurfaceNormalMap& normal_map,
+                         const RegistrationParameters& p, const EmState& state,
+                         RegistrationWorkspace* workspace, RegistrationResult* result,
                          Associations* associations) {
-  const ShapeInputs inputs = shapeInputs(normal_map, source, candidates, state.T, p);
+  const CandidateSets& candidates = workspace->candidates;
+  computeShapeInputs(normal_map, source, candidates, state.T, p, &workspace->normals,
+                     &workspace->spread);
   // The degeneracy check needs the normals even when the noise model does not.
-  const PointList isotropic_normals =
-      inputs.normals.empty() ? lookupNormals(normal_map, source, state.T, p.threads) : PointList();
-  const PointList& normals = inputs.normals.empty() ? isotropic_normals : inputs.normals;
-  const NoiseShapes shapes = makeNoiseShapes(inputs.normals, inputs.spread, state.sigma_squared, p);
-  const WeightedCorrespondences correspondences = computeWeightedCorrespondences(
-      source, candidates, shapes, state.T, p.nu, state.sigma_squared, p.threads);
+  const PointList isotropic_normals = workspace->normals.empty()
+                                          ? lookupNormals(normal_map, source, state.T, p.threads)
+                                          : PointList();
+  const PointList& normals = workspace->normals.empty() ? isotropic_normals : workspace->normals;
+  makeNoiseShapes(workspace->normals, workspace->spread, state.sigma_squared, p,
+                  &workspace->shapes);
+  const NoiseShapes& shapes = workspace->shapes;
+  computeWeightedCorrespondences(source, candidates, shapes, state.T, p.nu, state.sigma_squared,
+                                 p.threads, &workspace->e_step, &workspace->correspondences);
+  const WeightedCorrespondences& correspondences = workspace->correspondences;
   const auto covariance_start = std::chrono::steady_clock::now();
   PoseCovarianceTerms terms;
   computePoseCovariance(correspondences, state.T, state.sigma_squared, p.nu, &result->covariance,
@@ -299,9 +312,10 @@ RegistrationResult PdaRegistration::alignUnchecked(const PointList& source_input
     return result;
   }
 
-  PointList source = source_input;
+  PointList& source = workspace_.source;
+  source = source_input;
   result.source_points_dropped = removeNonFinitePoints(&source);
-  source = voxelDownsample(source, p.source_voxel_size);
+  if (p.source_voxel_size > 0.0) source = voxelDownsample(source, p.source_voxel_size);
   result.source_points_used = source.size();
   if (source.size() < static_cast<size_t>(p.min_correspondences)) {
     std::ostringstream reason;
@@ -338,7 +352,8 @@ RegistrationResult PdaRegistration::alignUnchecked(const PointList& source_input
   // to bring the estimate close, at a fraction of the cost). Settle: the full radius on every
   // point (a subset can stall where the whole cloud would not). Refine: every point, the
   // shrinking radius. Single-run mode (the paper's) is one refine run at the full radius.
-  PointList coarse_source;
+  PointList& coarse_source = workspace_.coarse_source;
+  coarse_source.clear();
   if (p.max_runs > 1 && p.coarse_stride > 1 &&
       source.size() / p.coarse_stride >= 20 * static_cast<size_t>(p.min_correspondences)) {
     for (size_t j = 0; j < source.size(); j += p.coarse_stride) coarse_source.push_back(source[j]);
@@ -350,7 +365,7 @@ RegistrationResult PdaRegistration::alignUnchecked(const PointList& source_input
   EmState state;
   state.T = T;
   if (p.sigma_mode == SigmaMode::kFixed) state.sigma_squared = p.fixed_sigma * p.fixed_sigma;
-  CandidateSets candidates;
+  CandidateSets& candidates = workspace_.candidates;
   Increment last_run_step{0.0, 0.0};
   bool em_settled = false;  // did the last run's EM loop stop on the epsilons?
 
@@ -359,7 +374,8 @@ RegistrationResult PdaRegistration::alignUnchecked(const PointList& source_input
     const double radius = stage == Stage::kRefine && p.max_runs > 1
                               ? candidateRadius(p, state.sigma_squared)
                               : p.radius;
-    candidates = findCandidateSets(*index, active, state.T, p.k, radius, p.threads);
+    findCandidateSets(*index, active, state.T, p.k, radius, p.threads, &workspace_.search,
+                      &candidates);
     result.runs = run;
     result.source_points_with_candidates = candidates.sourcePointsWithCandidates();
     if (result.source_points_with_candidates < static_cast<size_t>(p.min_correspondences)) {
@@ -372,7 +388,7 @@ RegistrationResult PdaRegistration::alignUnchecked(const PointList& source_input
       return result;
     }
     const Eigen::Isometry3d T_run_start = state.T;
-    if (!runEm(active, candidates, *normal_map, p, &state, &em_settled, &result.em_iterations)) {
+    if (!runEm(active, *normal_map, p, &workspace_, &state, &em_settled, &result.em_iterations)) {
       result.reason = "M-step failed: the weighted correspondences do not constrain the pose";
       return result;
     }
@@ -397,9 +413,10 @@ RegistrationResult PdaRegistration::alignUnchecked(const PointList& source_input
   result.sigma = std::sqrt(state.sigma_squared);
   // Statistics on every source point (the loop may have stopped in the coarse stage).
   if (candidates.sourceCount() != source.size()) {
-    candidates = findCandidateSets(*index, source, T, p.k, p.radius, p.threads);
+    findCandidateSets(*index, source, T, p.k, p.radius, p.threads, &workspace_.search,
+                      &candidates);
   }
-  fillFinalStatistics(source, candidates, *normal_map, p, state, &result, associations);
+  fillFinalStatistics(source, *normal_map, p, state, &workspace_, &result, associations);
 
   if (!result.converged) {
     std::ostringstream reason;

@@ -49,6 +49,19 @@ WeightedCorrespondences computeWeightedCorrespondences(const PointList& source,
                                                        double nu, double sigma_squared,
                                                        int threads);
 
+/// The E-step's per-source-point slots, kept between calls (see registration_workspace.hpp).
+struct EStepBuffers {
+  PointList means;
+  std::vector<double> weights, across, along;
+};
+
+/// The same into *out, reusing its memory and the buffers' (EM calls this every iteration).
+void computeWeightedCorrespondences(const PointList& source, const CandidateSets& candidates,
+                                    const NoiseShapes& shapes,
+                                    const Eigen::Isometry3d& T_target_source, double nu,
+                                    double sigma_squared, int threads, EStepBuffers* buffers,
+                                    WeightedCorrespondences* out);
+
 /// The per-candidate posteriors at T, for inspection (same model as the E-step).
 Associations computeAssociations(const PointList& source, const CandidateSets& candidates,
                                  const NoiseShapes& shapes,

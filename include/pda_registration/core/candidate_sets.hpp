@@ -23,10 +23,22 @@ struct CandidateSets {
   size_t sourcePointsWithCandidates() const;
 };
 
+/// The search's scratch space, kept between calls (see registration_workspace.hpp).
+struct CandidateSearchBuffers {
+  std::vector<size_t> slots;             ///< k per source point
+  std::vector<double> squared_distances; ///< k per source point
+  std::vector<size_t> found;             ///< per source point
+};
+
 /// Searches candidates for every source point transformed by T_target_source. `threads` > 1
 /// splits the source points among threads; the result is identical for any thread count.
 CandidateSets findCandidateSets(const TargetIndex& target, const PointList& source,
                                 const Eigen::Isometry3d& T_target_source, int k, double radius,
                                 int threads);
+
+/// The same into *sets, reusing its memory and the buffers' (an alignment calls this every run).
+void findCandidateSets(const TargetIndex& target, const PointList& source,
+                       const Eigen::Isometry3d& T_target_source, int k, double radius, int threads,
+                       CandidateSearchBuffers* buffers, CandidateSets* sets);
 
 }  // namespace pda_registration

@@ -57,5 +57,9 @@ bool usesSamplingModel(const RegistrationParameters& parameters);
 /// sampling model.
 NoiseShapes makeNoiseShapes(const PointList& normals, const std::vector<double>& spread,
                             double sigma_squared, const RegistrationParameters& parameters);
+/// The same into *shapes, reusing its memory (EM calls this every iteration).
+void makeNoiseShapes(const PointList& normals, const std::vector<double>& spread,
+                     double sigma_squared, const RegistrationParameters& parameters,
+                     NoiseShapes* shapes);
 
 }  // namespace pda_registration

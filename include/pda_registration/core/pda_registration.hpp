@@ -16,6 +16,7 @@
 #include "pda_registration/core/point_list.hpp"
 #include "pda_registration/core/registration_parameters.hpp"
 #include "pda_registration/core/registration_result.hpp"
+#include "pda_registration/core/registration_workspace.hpp"
 #include "pda_registration/core/surface_normals.hpp"
 #include "pda_registration/core/target_index.hpp"
 #include "pda_registration/core/target_map.hpp"
@@ -65,6 +66,7 @@ class PdaRegistration {
 
   RegistrationParameters parameters_;
   TargetMap target_map_;
+  RegistrationWorkspace workspace_;  // scratch memory kept between alignments
 };
 
 }  // namespace pda_registration
