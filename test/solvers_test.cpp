@@ -57,7 +57,7 @@ TEST(Solvers, AllRecoverAnExactTransform) {
   Eigen::Isometry3d newton = Eigen::Isometry3d::Identity();
   Eigen::Isometry3d ceres = Eigen::Isometry3d::Identity();
   ASSERT_TRUE(solveClosedForm(c, &closed));
-  ASSERT_TRUE(solveGaussNewton(c, 20, 0.0, 0.0, 1, &newton));
+  ASSERT_TRUE(solveGaussNewton(c, 20, 0.0, 0.0, &newton));
   ASSERT_TRUE(solveWithCeres(c, 50, 1, &ceres));
   for (const Eigen::Isometry3d* T : {&closed, &newton, &ceres}) {
     EXPECT_LT((T->translation() - truth.translation()).norm(), 1e-8);
@@ -72,7 +72,7 @@ TEST(Solvers, AgreeOnTheIsotropicWeightedProblem) {
   ASSERT_TRUE(solveClosedForm(c, &closed));
   for (bool use_ceres : {false, true}) {
     Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
-    ASSERT_TRUE(use_ceres ? solveWithCeres(c, 100, 1, &T) : solveGaussNewton(c, 50, 0, 0, 1, &T));
+    ASSERT_TRUE(use_ceres ? solveWithCeres(c, 100, 1, &T) : solveGaussNewton(c, 50, 0, 0, &T));
     EXPECT_LT((T.translation() - closed.translation()).norm(), 1e-6) << use_ceres;
     EXPECT_LT(rotationDistance(T, closed), 1e-6) << use_ceres;
     EXPECT_NEAR(weightedObjective(c, T), weightedObjective(c, closed),
@@ -87,7 +87,7 @@ TEST(Solvers, GaussNewtonAndCeresAgreeOnTheSurfaceModel) {
   Eigen::Isometry3d newton = Eigen::Isometry3d::Identity();
   Eigen::Isometry3d ceres = Eigen::Isometry3d::Identity();
   Eigen::Isometry3d closed = Eigen::Isometry3d::Identity();
-  ASSERT_TRUE(solveGaussNewton(c, 50, 0, 0, 1, &newton));
+  ASSERT_TRUE(solveGaussNewton(c, 50, 0, 0, &newton));
   ASSERT_TRUE(solveWithCeres(c, 100, 1, &ceres));
   ASSERT_TRUE(solveClosedForm(c, &closed));
   EXPECT_LT((newton.translation() - ceres.translation()).norm(), 1e-6);
@@ -99,7 +99,7 @@ TEST(Solvers, RefuseTooFewCorrespondences) {
   const WeightedCorrespondences c = makeCorrespondences(someTransform(), 0.0, 1.0, 2, 4);
   Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
   EXPECT_FALSE(solveClosedForm(c, &T));
-  EXPECT_FALSE(solveGaussNewton(c, 5, 0, 0, 1, &T));
+  EXPECT_FALSE(solveGaussNewton(c, 5, 0, 0, &T));
   EXPECT_FALSE(solveWithCeres(c, 5, 1, &T));
   EXPECT_TRUE(T.isApprox(Eigen::Isometry3d::Identity()));
 }

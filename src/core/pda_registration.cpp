@@ -58,7 +58,7 @@ double candidateRadius(const RegistrationParameters& p, double sigma_squared) {
 }
 
 bool runMStep(const WeightedCorrespondences& correspondences, const RegistrationParameters& p,
-              GaussNewtonBuffers* buffers, Eigen::Isometry3d* T) {
+              Eigen::Isometry3d* T) {
   switch (p.solver) {
     case MStepSolver::kClosedForm:
       return solveClosedForm(correspondences, T);
@@ -69,7 +69,7 @@ bool runMStep(const WeightedCorrespondences& correspondences, const Registration
   }
   // The EM loop checks convergence itself; inner steps only need to be a little finer.
   return solveGaussNewton(correspondences, p.solver_max_iterations, 0.1 * p.translation_epsilon,
-                          0.1 * p.rotation_epsilon, p.threads, T, buffers);
+                          0.1 * p.rotation_epsilon, T);
 }
 
 // The target surface normal at every moved source point (zero where unknown).
@@ -161,7 +161,7 @@ bool runEm(const PointList& source, const SurfaceNormalMap& normal_map,
                                    &workspace->correspondences);
     const WeightedCorrespondences& correspondences = workspace->correspondences;
     Eigen::Isometry3d T_next = state->T;
-    if (!runMStep(correspondences, p, &workspace->gauss_newton, &T_next)) return false;
+    if (!runMStep(correspondences, p, &T_next)) return false;
     if (estimate_sigma) {
       state->sigma_squared =
           std::max(estimateSigmaSquared(correspondences, T_next), sigma_squared_floor);

@@ -6,24 +6,14 @@
 
 #include <Eigen/Geometry>
 
-#include <vector>
-
 #include "pda_registration/core/association_weights.hpp"
-#include "pda_registration/core/pose_jacobian.hpp"
 
 namespace pda_registration {
 
-/// Per-correspondence terms of the normal equations, kept between calls.
-struct GaussNewtonBuffers {
-  std::vector<Matrix6d, Eigen::aligned_allocator<Matrix6d>> hessian_terms;
-  std::vector<Vector6d, Eigen::aligned_allocator<Vector6d>> gradient_terms;
-};
-
 /// Iterates from *T_target_source until the step is below the epsilons or max_iterations.
 /// Returns false (leaving *T unchanged) when the system is singular or has < 3 points.
-/// The result does not depend on `threads`.
 bool solveGaussNewton(const WeightedCorrespondences& correspondences, int max_iterations,
-                      double translation_epsilon, double rotation_epsilon, int threads,
-                      Eigen::Isometry3d* T_target_source, GaussNewtonBuffers* buffers = nullptr);
+                      double translation_epsilon, double rotation_epsilon,
+                      Eigen::Isometry3d* T_target_source);
 
 }  // namespace pda_registration
