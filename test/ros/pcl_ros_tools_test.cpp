@@ -115,23 +115,25 @@ TEST(PclRosTools, PcdToPointcloudRepublishesAtAnInterval) {
   for (size_t i = 0; i < clouds.size(); ++i) {
     EXPECT_EQ(static_cast<size_t>(clouds[i]->width) * clouds[i]->height, pcdPointCount(pcd));
     EXPECT_EQ(clouds[i]->header.frame_id, "velodyne");
-    if (i > 0) EXPECT_GT(clouds[i]->header.stamp, clouds[i - 1]->header.stamp);
+    if (i > 0) {
+      EXPECT_GT(clouds[i]->header.stamp, clouds[i - 1]->header.stamp);
+    }
   }
 }
 
 TEST(PclRosTools, PointcloudToPcdSavesATopicAsPcdFiles) {
-  const std::string directory = temporaryPath("saved");
-  fs::create_directories(directory);
+  const std::string W = temporaryPath("saved");  // the page's working directory
+  fs::create_directories(W);
   BackgroundCommand publisher(latchedMapCommand(), temporaryPath("map_publisher.log"));
   BackgroundCommand saver("exec timeout 120 rosrun pcl_ros pointcloud_to_pcd input:=/dense_map"
-                          " _prefix:=" + directory + "/dense_map_ _binary:=true",
+                          " _prefix:=" + W + "/dense_map_ _binary:=true",
                           temporaryPath("saver.log"));
   pcl::PointCloud<pcl::PointXYZ> original, saved;
   ASSERT_EQ(pcl::io::loadPCDFile(caseDirectory() + "/target.pcd", original), 0);
   // One file per message, <prefix><stamp>.pcd; polled until it holds the whole map (the writer
   // may still be filling it when it first appears).
   const auto holdsTheMap = [&] {
-    for (const auto& entry : fs::directory_iterator(directory)) {
+    for (const auto& entry : fs::directory_iterator(W)) {
       if (entry.path().filename().string().rfind("dense_map_", 0) != 0) continue;
       saved.clear();
       if (pcl::io::loadPCDFile(entry.path().string(), saved) != 0) continue;
