@@ -80,9 +80,9 @@ TEST(DocsCheck, ReportsUndocumentedAndStaleParameters) {
 }
 
 TEST(DocsCheck, ReportsAMissingHeadingAndAMalformedRow) {
-  EXPECT_TRUE(mentions(compareWithTable({"alpha"}, "x.cfg", "parameter", kPage, "page.md",
-                                        "### Not there"),
-                       "no heading \"### Not there\""));
+  EXPECT_TRUE(
+      mentions(compareWithTable({"alpha"}, "x.cfg", "parameter", kPage, "page.md", "### Not there"),
+               "no heading \"### Not there\""));
   const std::string page = "### P\n\n| name | x |\n|---|---|\n| alpha (live) | 1 |\n";
   EXPECT_TRUE(mentions(compareWithTable({"alpha"}, "x.cfg", "parameter", page, "p.md", "### P"),
                        "malformed row"));
@@ -102,9 +102,9 @@ TEST(DocsCheck, ReportsStaleArgsWrongDefaultsAndStaleLaunchFiles) {
   EXPECT_EQ(problems.size(), 2u);
   EXPECT_TRUE(mentions(problems, "stale launch arg \"old\""));
   EXPECT_TRUE(mentions(problems, "launch arg \"flag\" of launch/a.launch"));
-  EXPECT_TRUE(mentions(checkLaunchFile("a.launch", "<launch><arg name=\"new\"/></launch>", kPage,
-                                       "page.md"),
-                       "undocumented launch arg \"new\""));
+  EXPECT_TRUE(mentions(
+      checkLaunchFile("a.launch", "<launch><arg name=\"new\"/></launch>", kPage, "page.md"),
+      "undocumented launch arg \"new\""));
   EXPECT_TRUE(mentions(staleLaunchFileSections({"b.launch"}, kPage, "page.md"),
                        "launch/a.launch no longer exists"));
   EXPECT_TRUE(staleLaunchFileSections({"a.launch"}, kPage, "page.md").empty());

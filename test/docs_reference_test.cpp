@@ -82,9 +82,8 @@ TEST(DocsReference, EveryLiveParameterIsDocumentedAndNoneIsStale) {
 }
 
 TEST(DocsReference, EveryStartupParameterIsDocumentedAndNoneIsStale) {
-  const auto problems =
-      compareWithTable(startupParameters(), "src/ros/*.cpp", "parameter",
-                       read(kRepo / kNodeletPage), kNodeletPage, kStartupHeading);
+  const auto problems = compareWithTable(startupParameters(), "src/ros/*.cpp", "parameter",
+                                         read(kRepo / kNodeletPage), kNodeletPage, kStartupHeading);
   EXPECT_TRUE(problems.empty()) << joined(problems);
 }
 
@@ -108,8 +107,8 @@ TEST(DocsReference, ARenamedParameterIsCaughtBothWays) {
   // The real .cfg with its first entry renamed, as a careless edit would leave it.
   const std::string cfg = read(kRepo / "cfg/PdaRegistration.cfg");
   const std::string name = dynamicReconfigureEntries(cfg).at(0);
-  const std::string renamed_cfg = std::regex_replace(cfg, std::regex("\"" + name + "\""),
-                                                     "\"" + name + "_renamed\"");
+  const std::string renamed_cfg =
+      std::regex_replace(cfg, std::regex("\"" + name + "\""), "\"" + name + "_renamed\"");
   const auto problems =
       compareWithTable(dynamicReconfigureEntries(renamed_cfg), "cfg/PdaRegistration.cfg",
                        "parameter", read(kRepo / kNodeletPage), kNodeletPage, kLiveHeading);

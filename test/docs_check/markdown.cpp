@@ -111,8 +111,8 @@ std::vector<std::vector<std::string>> tableAfterHeading(const std::string& markd
 std::string headingAnchor(const std::string& heading_text) {
   // UTF-8 punctuation GitHub drops from anchors (the ASCII ones are dropped below).
   static const std::vector<std::string> kDroppedPunctuation = {
-      "\u2013", "\u2014", "\u2026", "\u2190", "\u2192", "\u00d7", "\u00b0", "\u00b7",
-      "\u2018", "\u2019", "\u201c", "\u201d"};
+      "\u2013", "\u2014", "\u2026", "\u2190", "\u2192", "\u00d7",
+      "\u00b0", "\u00b7", "\u2018", "\u2019", "\u201c", "\u201d"};
   std::string anchor;
   for (size_t i = 0; i < heading_text.size();) {
     const unsigned char c = static_cast<unsigned char>(heading_text[i]);

@@ -134,8 +134,8 @@ std::vector<std::string> checkLaunchFile(const std::string& launch_file,
   std::vector<std::string> names;
   for (const LaunchArg& arg : args) names.push_back(arg.name);
   const std::string heading = launchHeading(launch_file);
-  std::vector<std::string> problems = compareWithTable(names, "launch/" + launch_file,
-                                                       "launch arg", page, page_name, heading);
+  std::vector<std::string> problems =
+      compareWithTable(names, "launch/" + launch_file, "launch arg", page, page_name, heading);
   std::string problem;
   for (const auto& row : tableAfterHeading(page, heading, &problem)) {
     if (row.size() < 2) continue;

@@ -121,8 +121,8 @@ TEST(PclRosTools, ThePageShowsEveryCommandThisTestRuns) {
   std::vector<std::string> lines;
   for (std::string line; std::getline(file, line);) lines.push_back(line);
   ASSERT_FALSE(lines.empty()) << "docs/tuning.md not found";
-  for (const char* command : {kLatchedMap, kPeriodicScan, kSaveMap, kWriteBag, kExportDense,
-                              kExportSparse, kAlign}) {
+  for (const char* command :
+       {kLatchedMap, kPeriodicScan, kSaveMap, kWriteBag, kExportDense, kExportSparse, kAlign}) {
     EXPECT_TRUE(std::find(lines.begin(), lines.end(), command) != lines.end())
         << "docs/tuning.md no longer shows, on a line of its own: " << command;
   }
@@ -184,8 +184,7 @@ TEST(PclRosTools, PointcloudToPcdSavesATopicAsPcdFiles) {
     return false;
   };
   EXPECT_TRUE(waitUntil(holdsTheMap, 60))
-      << "no dense_map_*.pcd equal to target.pcd within 60 s: " << saver.log()
-      << publisher.log();
+      << "no dense_map_*.pcd equal to target.pcd within 60 s: " << saver.log() << publisher.log();
 }
 
 TEST(PclRosTools, BagToPcdExportsCloudsThatPdaAlignAligns) {
