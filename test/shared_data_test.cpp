@@ -1,4 +1,4 @@
-// Every real case of ../shared/data, from seeded perturbations at the README's 2°/0.10 m and
+// Every real case of ../shared/data, from seeded perturbations at docs/benchmark.md's 2°/0.10 m and
 // 5°/0.25 m levels: multi-run PDA with default parameters must land within the ground truth's
 // tolerance. The data must be present: a missing directory fails the test, it is not skipped.
 #include "test_support/shared_data.hpp"
@@ -33,7 +33,7 @@ Tolerance toleranceFor(const std::string& name) {
 }
 
 // The dense-dense Kinect pair has 250k points on both sides: a 2 cm source voxel keeps the test
-// fast, as the README recommends for dense sources.
+// fast, as docs/benchmark.md does for every method on this pair.
 RegistrationParameters parametersFor(const std::string& name) {
   RegistrationParameters p;
   if (name == "kinect_pairwise") p.source_voxel_size = 0.02;

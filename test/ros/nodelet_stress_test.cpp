@@ -183,7 +183,7 @@ TEST(NodeletStress, StaysResponsiveDropsStaleInputsAndKeepsMemoryFlat) {
   // Alignments do not wait for index builds: when each alignment waited for its map's index the
   // median was 1055 ms at 1 alignment/s; indexing beside the alignments and the source budget
   // bring it to ~270-330 ms and 3-4/s on a 2-core machine (the figure itself is measured by the
-  // 120 s run in the README, not asserted here: it moves +-15 % with the machine). The bounds
+  // 120 s run in docs/hardening.md, not asserted here: it moves +-15 % with the machine). The bounds
   // catch a return of the waiting at half its cost.
   EXPECT_LE(percentile(latencies, 0.5), 600.0);
   EXPECT_GE(static_cast<double>(aligned), 2.0 * duration);

@@ -3,7 +3,7 @@
 // across, a few buildings at 20-70 m, rows of parked cars, lamp poles and trees. It is the kind
 // of scene where most lidar returns lie on the ground plane and only a few structures constrain
 // the yaw: the regime in which a registration that rewards sample coincidences can lock onto a
-// yaw of whole azimuth steps (see the README's "lattice" cases). One seed, one scene.
+// yaw of whole azimuth steps (see the "lattice" cases in docs/benchmark.md). One seed, one scene.
 //
 // The ground is z = 0; the sensors stand around the origin, on the road along the x axis.
 
