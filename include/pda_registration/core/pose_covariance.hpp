@@ -14,7 +14,7 @@
 //    The grid is as coarse as leaves kMinBlocks blocks; what the map's parts disagree on at a
 //    larger scale (a warp over the whole map, a map that covers part of the scan) comes from a
 //    delete-one-octant jackknife, and the structure term is the upper bound of the two.
-// See the README's covariance section for what it is calibrated against (pda_covariance_check).
+// See docs/benchmark.md (Covariance) for what it is calibrated against (pda_covariance_check).
 
 #include <Eigen/Geometry>
 

@@ -1,6 +1,6 @@
 #pragma once
 // Every knob of the PDA registration, with its default and unit. Lengths are in the clouds' unit
-// (metres for ROS data); the README's parameter table mirrors this file.
+// (metres for ROS data); docs/nodelet.md's parameter tables mirror this file.
 
 #include <limits>
 #include <string>
