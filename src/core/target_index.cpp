@@ -77,9 +77,6 @@ struct TargetIndex::Tree {
   };
   size_t begin = 0, end = 0;
   std::vector<uint32_t> order;  // point indices, leaves' points contiguous
-  // The points in `order`'s order: a leaf is read from one contiguous block, not gathered
-  // through the indices (on a map of millions of points that gather is a cache miss per point).
-  PointList ordered_points;
   std::vector<Node> nodes;
   Point box_min = Point::Zero(), box_max = Point::Zero();
 
@@ -100,11 +97,7 @@ struct TargetIndex::Tree {
     nodes.reserve(2 * entries.size() / kLeafSize + 2);
     build(&entries, 0, static_cast<uint32_t>(entries.size()), &box_min, &box_max);
     order.resize(entries.size());
-    ordered_points.resize(entries.size());
-    for (size_t i = 0; i < entries.size(); ++i) {
-      order[i] = entries[i].index;
-      ordered_points[i] = entries[i].p;
-    }
+    for (size_t i = 0; i < entries.size(); ++i) order[i] = entries[i].index;
   }
 
   uint32_t build(std::vector<Entry>* entries, uint32_t lo, uint32_t hi, Point* mn, Point* mx) {
@@ -151,7 +144,7 @@ struct TargetIndex::Tree {
     return id;
   }
 
-  void search(const Point& q, NearestWithinRadius* result) const {
+  void search(const PointList& points, const Point& q, NearestWithinRadius* result) const {
     double dists[3];
     double mindist = 0.0;
     for (int d = 0; d < 3; ++d) {
@@ -160,16 +153,17 @@ struct TargetIndex::Tree {
       if (q[d] > box_max[d]) dists[d] = (q[d] - box_max[d]) * (q[d] - box_max[d]);
       mindist += dists[d];
     }
-    if (mindist <= result->bound()) searchNode(0, q, mindist, dists, result);
+    if (mindist <= result->bound()) searchNode(points, 0, q, mindist, dists, result);
   }
 
-  void searchNode(uint32_t id, const Point& q, double mindist,
+  void searchNode(const PointList& points, uint32_t id, const Point& q, double mindist,
                   double* dists, NearestWithinRadius* result) const {
     const Node& node = nodes[id];
     if (node.axis < 0) {
       for (uint32_t i = node.first; i < node.last; ++i) {
-        const double d = squaredDistance(q, ordered_points[i]);
-        if (d <= result->bound()) result->offer(d, order[i]);
+        const uint32_t index = order[i];
+        const double d = squaredDistance(q, points[index]);
+        if (d <= result->bound()) result->offer(d, index);
       }
       return;
     }
@@ -186,11 +180,11 @@ struct TargetIndex::Tree {
       far = node.first;
       cut = diff_low * diff_low;
     }
-    searchNode(near, q, mindist, dists, result);
+    searchNode(points, near, q, mindist, dists, result);
     const double saved = dists[axis];
     mindist = mindist + cut - saved;
     dists[axis] = cut;
-    if (mindist <= result->bound()) searchNode(far, q, mindist, dists, result);
+    if (mindist <= result->bound()) searchNode(points, far, q, mindist, dists, result);
     dists[axis] = saved;
   }
 };
@@ -243,7 +237,7 @@ size_t TargetIndex::nearestWithinRadius(const Point& query, int k, double radius
                                         double* squared_distances) const {
   if (points_.empty() || k <= 0 || !(radius > 0.0)) return 0;
   NearestWithinRadius result(static_cast<size_t>(k), radius * radius, indices, squared_distances);
-  for (const auto& tree : trees_) tree->search(query, &result);
+  for (const auto& tree : trees_) tree->search(points_, query, &result);
   return result.size();
 }
 
