@@ -216,8 +216,10 @@ TEST(SyntheticRegistration, ResultDoesNotDependOnEarlierAlignments) {
     const RegistrationParameters* p;
     uint64_t seed;
   };
-  const Step steps[] = {{&large, &anisotropic, 1}, {&small, &isotropic, 2},
-                        {&large, &isotropic, 3},   {&small, &anisotropic, 4},
+  const Step steps[] = {{&large, &anisotropic, 1},
+                        {&small, &isotropic, 2},
+                        {&large, &isotropic, 3},
+                        {&small, &anisotropic, 4},
                         {&large, &anisotropic, 1}};
   PdaRegistration reused(anisotropic);
   ASSERT_TRUE(reused.setTarget(large.target));  // the small room's target differs only by noise

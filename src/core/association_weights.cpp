@@ -58,12 +58,9 @@ void computeCandidateWeights(const double* squared_residuals, size_t count, doub
   }
 }
 
-WeightedCorrespondences computeWeightedCorrespondences(const PointList& source,
-                                                       const CandidateSets& candidates,
-                                                       const NoiseShapes& shapes,
-                                                       const Eigen::Isometry3d& T_target_source,
-                                                       double nu, double sigma_squared,
-                                                       int threads) {
+WeightedCorrespondences computeWeightedCorrespondences(
+    const PointList& source, const CandidateSets& candidates, const NoiseShapes& shapes,
+    const Eigen::Isometry3d& T_target_source, double nu, double sigma_squared, int threads) {
   EStepBuffers buffers;
   WeightedCorrespondences out;
   computeWeightedCorrespondences(source, candidates, shapes, T_target_source, nu, sigma_squared,
@@ -203,8 +200,8 @@ double estimateSigmaSquared(const WeightedCorrespondences& c,
     for (size_t i = 0; i < c.size(); ++i) {
       if (!(c.normal[i].squaredNorm() > 0.0)) continue;
       double across = 0.0, along = 0.0;
-      splitSquaredResidual(c.target_mean[i] - T_target_source * c.source[i], c.normal[i],
-                           &across, &along);
+      splitSquaredResidual(c.target_mean[i] - T_target_source * c.source[i], c.normal[i], &across,
+                           &along);
       across_sum += c.weight[i] * across + c.spread_across[i];
       ++with_normal;
     }

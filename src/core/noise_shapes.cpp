@@ -53,8 +53,7 @@ NoiseShapes makeNoiseShapes(const PointList& normals, const std::vector<double>&
 }
 
 void makeNoiseShapes(const PointList& normals, const std::vector<double>& spread,
-                     double sigma_squared, const RegistrationParameters& p,
-                     NoiseShapes* out) {
+                     double sigma_squared, const RegistrationParameters& p, NoiseShapes* out) {
   NoiseShapes& shapes = *out;
   shapes.sampling = false;
   if (!(p.surface_anisotropy > 1.0)) {  // the paper's isotropic model

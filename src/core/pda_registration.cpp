@@ -8,33 +8,15 @@
 #include <sstream>
 
 #include "pda_registration/core/alignment_direction.hpp"
-#include "pda_registration/core/association_weights.hpp"
 #include "pda_registration/core/candidate_sets.hpp"
-#include "pda_registration/core/ceres_solver.hpp"
-#include "pda_registration/core/closed_form_solver.hpp"
-#include "pda_registration/core/degeneracy.hpp"
-#include "pda_registration/core/gauss_newton_solver.hpp"
+#include "pda_registration/core/em_run.hpp"
+#include "pda_registration/core/final_statistics.hpp"
 #include "pda_registration/core/nearest_rotation.hpp"
-#include "pda_registration/core/noise_shapes.hpp"
 #include "pda_registration/core/point_filter.hpp"
 #include "pda_registration/core/pose_covariance.hpp"
 
 namespace pda_registration {
 namespace {
-
-struct Increment {
-  double translation;
-  double rotation;
-};
-
-Increment incrementBetween(const Eigen::Isometry3d& from, const Eigen::Isometry3d& to) {
-  const Eigen::AngleAxisd rotation(to.linear() * from.linear().transpose());
-  return {(to.translation() - from.translation()).norm(), std::abs(rotation.angle())};
-}
-
-bool isSmall(const Increment& increment, const RegistrationParameters& p) {
-  return increment.translation <= p.translation_epsilon && increment.rotation <= p.rotation_epsilon;
-}
 
 // Accepts a slightly non-orthonormal rotation (text files round it) and snaps it back; rejects
 // anything that is not close to a rigid transform.
@@ -55,164 +37,6 @@ bool sanitiseInitialGuess(const Eigen::Isometry3d& initial, Eigen::Isometry3d* o
 double candidateRadius(const RegistrationParameters& p, double sigma_squared) {
   if (!(sigma_squared > 0.0)) return p.radius;
   return std::min(p.radius, std::max(p.min_radius, 6.0 * std::sqrt(sigma_squared)));
-}
-
-bool runMStep(const WeightedCorrespondences& correspondences, const RegistrationParameters& p,
-              Eigen::Isometry3d* T) {
-  switch (p.solver) {
-    case MStepSolver::kClosedForm:
-      return solveClosedForm(correspondences, T);
-    case MStepSolver::kCeres:
-      return solveWithCeres(correspondences, p.solver_max_iterations, p.threads, T);
-    case MStepSolver::kGaussNewton:
-      break;
-  }
-  // The EM loop checks convergence itself; inner steps only need to be a little finer.
-  return solveGaussNewton(correspondences, p.solver_max_iterations, 0.1 * p.translation_epsilon,
-                          0.1 * p.rotation_epsilon, T);
-}
-
-// The target surface normal at every moved source point (zero where unknown).
-void lookupNormals(const SurfaceNormalMap& map, const PointList& source,
-                   const Eigen::Isometry3d& T, int threads, PointList* normals) {
-  normals->resize(source.size());
-#pragma omp parallel for schedule(static) num_threads(std::max(threads, 1))
-  for (long long j = 0; j < static_cast<long long>(source.size()); ++j) {
-    (*normals)[j] = map.normalAt(T * source[j]);
-  }
-}
-
-PointList lookupNormals(const SurfaceNormalMap& map, const PointList& source,
-                        const Eigen::Isometry3d& T, int threads) {
-  PointList normals;
-  lookupNormals(map, source, T, threads, &normals);
-  return normals;
-}
-
-// Inlier fraction over all used source points, and the mean distance of inliers to their
-// nearest candidate, at the final estimate.
-void fillInlierStatistics(const PointList& source, const CandidateSets& candidates,
-                          const Eigen::Isometry3d& T, double inlier_distance,
-                          RegistrationResult* result) {
-  size_t inliers = 0;
-  double distance_sum = 0.0;
-  for (size_t j = 0; j < candidates.sourceCount(); ++j) {
-    if (candidates.candidateCount(j) == 0) continue;
-    const Point x = T * source[j];
-    double best = std::numeric_limits<double>::infinity();
-    for (size_t c = candidates.offsets[j]; c < candidates.offsets[j + 1]; ++c) {
-      best = std::min(best, (candidates.points[c] - x).squaredNorm());
-    }
-    best = std::sqrt(best);
-    if (best < inlier_distance) {
-      ++inliers;
-      distance_sum += best;
-    }
-  }
-  result->inlier_fraction =
-      source.empty() ? 0.0 : static_cast<double>(inliers) / static_cast<double>(source.size());
-  result->mean_residual = inliers == 0 ? 0.0 : distance_sum / static_cast<double>(inliers);
-}
-
-// What the noise shapes of one run are made from: the target normals at the moved source points
-// (not needed by the isotropic model: left empty) and the candidates' sampling spread (sampling
-// model only). Returns the target's thickness, sigma^2's floor from the target's own noise
-// (sampling model; 0 otherwise).
-double computeShapeInputs(const SurfaceNormalMap& normal_map, const PointList& source,
-                          const CandidateSets& candidates, const Eigen::Isometry3d& T,
-                          const RegistrationParameters& p, PointList* normals,
-                          std::vector<double>* spread) {
-  normals->clear();
-  spread->clear();
-  if (p.surface_anisotropy > 1.0) lookupNormals(normal_map, source, T, p.threads, normals);
-  if (!usesSamplingModel(p)) return 0.0;
-  *spread = candidateSpread(candidates, p.threads);
-  return targetThickness(candidates, *normals);
-}
-
-// The part of the EM state that carries over from run to run.
-struct EmState {
-  Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
-  double sigma_squared = 0.0;  // 0 until the first run estimates it
-};
-
-// One run: EM on the workspace's candidate sets (fixed during the run) until a step is below the
-// epsilons or max_em_iterations. Returns false when the M-step cannot solve.
-bool runEm(const PointList& source, const SurfaceNormalMap& normal_map,
-           const RegistrationParameters& p, RegistrationWorkspace* workspace, EmState* state,
-           bool* settled, int* em_iterations) {
-  const bool estimate_sigma = p.sigma_mode == SigmaMode::kEstimated;
-  const CandidateSets& candidates = workspace->candidates;
-  const double thickness = computeShapeInputs(normal_map, source, candidates, state->T, p,
-                                              &workspace->normals, &workspace->spread);
-  // A floor keeps the t-weights defined when the clouds match exactly (sigma -> 0); the sampling
-  // model's is the target's own thickness about its surface.
-  const double sigma_squared_floor = std::max(std::pow(1e-6 * p.radius, 2), thickness);
-  if (estimate_sigma && state->sigma_squared == 0.0) {
-    state->sigma_squared =
-        std::max(initialSigmaSquared(source, candidates, state->T), sigma_squared_floor);
-  }
-  *settled = false;
-  for (int iteration = 0; iteration < p.max_em_iterations; ++iteration) {
-    makeNoiseShapes(workspace->normals, workspace->spread, state->sigma_squared, p,
-                    &workspace->shapes);
-    computeWeightedCorrespondences(source, candidates, workspace->shapes, state->T, p.nu,
-                                   state->sigma_squared, p.threads, &workspace->e_step,
-                                   &workspace->correspondences);
-    const WeightedCorrespondences& correspondences = workspace->correspondences;
-    Eigen::Isometry3d T_next = state->T;
-    if (!runMStep(correspondences, p, &T_next)) return false;
-    if (estimate_sigma) {
-      state->sigma_squared =
-          std::max(estimateSigmaSquared(correspondences, T_next), sigma_squared_floor);
-    }
-    const Increment step = incrementBetween(state->T, T_next);
-    state->T = T_next;
-    ++*em_iterations;
-    if (isSmall(step, p)) {
-      *settled = true;
-      break;
-    }
-  }
-  return true;
-}
-
-// Covariance, inlier statistics and the degeneracy check at the final estimate.
-// Uses the workspace's candidate sets (for every source point) and its memory.
-void fillFinalStatistics(const PointList& source, const SurfaceNormalMap& normal_map,
-                         const RegistrationParameters& p, const EmState& state,
-                         RegistrationWorkspace* workspace, RegistrationResult* result,
-                         Associations* associations) {
-  const CandidateSets& candidates = workspace->candidates;
-  computeShapeInputs(normal_map, source, candidates, state.T, p, &workspace->normals,
-                     &workspace->spread);
-  // The degeneracy check needs the normals even when the noise model does not.
-  const PointList isotropic_normals = workspace->normals.empty()
-                                          ? lookupNormals(normal_map, source, state.T, p.threads)
-                                          : PointList();
-  const PointList& normals = workspace->normals.empty() ? isotropic_normals : workspace->normals;
-  makeNoiseShapes(workspace->normals, workspace->spread, state.sigma_squared, p,
-                  &workspace->shapes);
-  const NoiseShapes& shapes = workspace->shapes;
-  computeWeightedCorrespondences(source, candidates, shapes, state.T, p.nu, state.sigma_squared,
-                                 p.threads, &workspace->e_step, &workspace->correspondences);
-  const WeightedCorrespondences& correspondences = workspace->correspondences;
-  const auto covariance_start = std::chrono::steady_clock::now();
-  PoseCovarianceTerms terms;
-  computePoseCovariance(correspondences, state.T, state.sigma_squared, p.nu, &result->covariance,
-                        &terms);
-  result->covariance_blocks = terms.blocks;
-  result->covariance_ms = std::chrono::duration<double, std::milli>(
-                              std::chrono::steady_clock::now() - covariance_start)
-                              .count();
-  fillInlierStatistics(source, candidates, state.T, p.inlier_sigmas * result->sigma, result);
-  PointList moved(source.size());
-  for (size_t j = 0; j < source.size(); ++j) moved[j] = state.T * source[j];
-  result->degeneracy_ratio = constraintEigenvalueRatio(moved, normals);
-  if (associations) {
-    *associations =
-        computeAssociations(source, candidates, shapes, state.T, p.nu, state.sigma_squared);
-  }
 }
 
 }  // namespace
@@ -413,8 +237,7 @@ RegistrationResult PdaRegistration::alignUnchecked(const PointList& source_input
   result.sigma = std::sqrt(state.sigma_squared);
   // Statistics on every source point (the loop may have stopped in the coarse stage).
   if (candidates.sourceCount() != source.size()) {
-    findCandidateSets(*index, source, T, p.k, p.radius, p.threads, &workspace_.search,
-                      &candidates);
+    findCandidateSets(*index, source, T, p.k, p.radius, p.threads, &workspace_.search, &candidates);
   }
   fillFinalStatistics(source, *normal_map, p, state, &workspace_, &result, associations);
 
@@ -459,8 +282,8 @@ RegistrationResult PdaRegistration::alignSwapped(const PointList& source,
     return result;
   }
   const std::shared_ptr<const TargetIndex> target = target_map_.index();
-  result = swapped.alignUnchecked(target->points(), T_target_source_initial.inverse(),
-                                  associations);
+  result =
+      swapped.alignUnchecked(target->points(), T_target_source_initial.inverse(), associations);
   const Eigen::Isometry3d T_source_target = result.T_target_source;
   result.T_target_source = T_source_target.inverse();
   result.covariance = invertedPoseCovariance(T_source_target, result.covariance);

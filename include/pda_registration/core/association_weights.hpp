@@ -26,12 +26,12 @@ void computeCandidateWeights(const double* squared_residuals, size_t count, doub
 
 /// The E-step's output, reduced to one weighted correspondence per source point with candidates.
 struct WeightedCorrespondences {
-  std::vector<size_t> source_index;  ///< which source point
-  PointList source;                  ///< x_j (in the source frame)
-  PointList target_mean;             ///< y_bar_j (in the target frame)
-  std::vector<double> weight;        ///< W_j = sum_k rho_jk
-  PointList normal;                  ///< n_j of the noise shape (zero: no normal)
-  std::vector<double> inverse_kappa; ///< 1 / kappa_j of the noise shape
+  std::vector<size_t> source_index;   ///< which source point
+  PointList source;                   ///< x_j (in the source frame)
+  PointList target_mean;              ///< y_bar_j (in the target frame)
+  std::vector<double> weight;         ///< W_j = sum_k rho_jk
+  PointList normal;                   ///< n_j of the noise shape (zero: no normal)
+  std::vector<double> inverse_kappa;  ///< 1 / kappa_j of the noise shape
   /// S_j split across / along the surface (splitSquaredResidual): the part of the objective no
   /// pose can remove; the shaped spread is spread_across + inverse_kappa * spread_along.
   std::vector<double> spread_across, spread_along;
@@ -42,12 +42,9 @@ struct WeightedCorrespondences {
 
 /// Runs the E-step at the current estimate for every source point with candidates, each in its
 /// noise shape (one per source point; isotropic when `shapes` is).
-WeightedCorrespondences computeWeightedCorrespondences(const PointList& source,
-                                                       const CandidateSets& candidates,
-                                                       const NoiseShapes& shapes,
-                                                       const Eigen::Isometry3d& T_target_source,
-                                                       double nu, double sigma_squared,
-                                                       int threads);
+WeightedCorrespondences computeWeightedCorrespondences(
+    const PointList& source, const CandidateSets& candidates, const NoiseShapes& shapes,
+    const Eigen::Isometry3d& T_target_source, double nu, double sigma_squared, int threads);
 
 /// The E-step's per-source-point slots, kept between calls (see registration_workspace.hpp).
 struct EStepBuffers {

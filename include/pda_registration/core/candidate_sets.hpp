@@ -25,9 +25,9 @@ struct CandidateSets {
 
 /// The search's scratch space, kept between calls (see registration_workspace.hpp).
 struct CandidateSearchBuffers {
-  std::vector<size_t> slots;             ///< k per source point
-  std::vector<double> squared_distances; ///< k per source point
-  std::vector<size_t> found;             ///< per source point
+  std::vector<size_t> slots;              ///< k per source point
+  std::vector<double> squared_distances;  ///< k per source point
+  std::vector<size_t> found;              ///< per source point
 };
 
 /// Searches candidates for every source point transformed by T_target_source. `threads` > 1

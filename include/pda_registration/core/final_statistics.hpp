@@ -1,0 +1,18 @@
+#pragma once
+// What a registration result reports besides the estimate, computed once at the final estimate:
+// sigma's inliers and their mean residual, the covariance, the degeneracy ratio, and on request
+// the weighted associations.
+
+#include "pda_registration/core/associations.hpp"
+#include "pda_registration/core/em_run.hpp"
+#include "pda_registration/core/registration_result.hpp"
+
+namespace pda_registration {
+
+/// Uses the workspace's candidate sets (for every source point) and its memory.
+void fillFinalStatistics(const PointList& source, const SurfaceNormalMap& normal_map,
+                         const RegistrationParameters& p, const EmState& state,
+                         RegistrationWorkspace* workspace, RegistrationResult* result,
+                         Associations* associations);
+
+}  // namespace pda_registration

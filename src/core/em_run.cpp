@@ -1,0 +1,111 @@
+#include "pda_registration/core/em_run.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include "pda_registration/core/association_weights.hpp"
+#include "pda_registration/core/ceres_solver.hpp"
+#include "pda_registration/core/closed_form_solver.hpp"
+#include "pda_registration/core/gauss_newton_solver.hpp"
+#include "pda_registration/core/noise_shapes.hpp"
+
+namespace pda_registration {
+
+Increment incrementBetween(const Eigen::Isometry3d& from, const Eigen::Isometry3d& to) {
+  const Eigen::AngleAxisd rotation(to.linear() * from.linear().transpose());
+  return {(to.translation() - from.translation()).norm(), std::abs(rotation.angle())};
+}
+
+bool isSmall(const Increment& increment, const RegistrationParameters& p) {
+  return increment.translation <= p.translation_epsilon && increment.rotation <= p.rotation_epsilon;
+}
+
+namespace {
+
+bool runMStep(const WeightedCorrespondences& correspondences, const RegistrationParameters& p,
+              Eigen::Isometry3d* T) {
+  switch (p.solver) {
+    case MStepSolver::kClosedForm:
+      return solveClosedForm(correspondences, T);
+    case MStepSolver::kCeres:
+      return solveWithCeres(correspondences, p.solver_max_iterations, p.threads, T);
+    case MStepSolver::kGaussNewton:
+      break;
+  }
+  // The EM loop checks convergence itself; inner steps only need to be a little finer.
+  return solveGaussNewton(correspondences, p.solver_max_iterations, 0.1 * p.translation_epsilon,
+                          0.1 * p.rotation_epsilon, T);
+}
+
+}  // namespace
+
+void lookupNormals(const SurfaceNormalMap& map, const PointList& source, const Eigen::Isometry3d& T,
+                   int threads, PointList* normals) {
+  normals->resize(source.size());
+#pragma omp parallel for schedule(static) num_threads(std::max(threads, 1))
+  for (long long j = 0; j < static_cast<long long>(source.size()); ++j) {
+    (*normals)[j] = map.normalAt(T * source[j]);
+  }
+}
+
+PointList lookupNormals(const SurfaceNormalMap& map, const PointList& source,
+                        const Eigen::Isometry3d& T, int threads) {
+  PointList normals;
+  lookupNormals(map, source, T, threads, &normals);
+  return normals;
+}
+
+double computeShapeInputs(const SurfaceNormalMap& normal_map, const PointList& source,
+                          const CandidateSets& candidates, const Eigen::Isometry3d& T,
+                          const RegistrationParameters& p, PointList* normals,
+                          std::vector<double>* spread) {
+  normals->clear();
+  spread->clear();
+  if (p.surface_anisotropy > 1.0) lookupNormals(normal_map, source, T, p.threads, normals);
+  if (!usesSamplingModel(p)) return 0.0;
+  *spread = candidateSpread(candidates, p.threads);
+  return targetThickness(candidates, *normals);
+}
+
+// One run: EM on the workspace's candidate sets (fixed during the run) until a step is below the
+// epsilons or max_em_iterations. Returns false when the M-step cannot solve.
+bool runEm(const PointList& source, const SurfaceNormalMap& normal_map,
+           const RegistrationParameters& p, RegistrationWorkspace* workspace, EmState* state,
+           bool* settled, int* em_iterations) {
+  const bool estimate_sigma = p.sigma_mode == SigmaMode::kEstimated;
+  const CandidateSets& candidates = workspace->candidates;
+  const double thickness = computeShapeInputs(normal_map, source, candidates, state->T, p,
+                                              &workspace->normals, &workspace->spread);
+  // A floor keeps the t-weights defined when the clouds match exactly (sigma -> 0); the sampling
+  // model's is the target's own thickness about its surface.
+  const double sigma_squared_floor = std::max(std::pow(1e-6 * p.radius, 2), thickness);
+  if (estimate_sigma && state->sigma_squared == 0.0) {
+    state->sigma_squared =
+        std::max(initialSigmaSquared(source, candidates, state->T), sigma_squared_floor);
+  }
+  *settled = false;
+  for (int iteration = 0; iteration < p.max_em_iterations; ++iteration) {
+    makeNoiseShapes(workspace->normals, workspace->spread, state->sigma_squared, p,
+                    &workspace->shapes);
+    computeWeightedCorrespondences(source, candidates, workspace->shapes, state->T, p.nu,
+                                   state->sigma_squared, p.threads, &workspace->e_step,
+                                   &workspace->correspondences);
+    const WeightedCorrespondences& correspondences = workspace->correspondences;
+    Eigen::Isometry3d T_next = state->T;
+    if (!runMStep(correspondences, p, &T_next)) return false;
+    if (estimate_sigma) {
+      state->sigma_squared =
+          std::max(estimateSigmaSquared(correspondences, T_next), sigma_squared_floor);
+    }
+    const Increment step = incrementBetween(state->T, T_next);
+    state->T = T_next;
+    ++*em_iterations;
+    if (isSmall(step, p)) {
+      *settled = true;
+      break;
+    }
+  }
+  return true;
+}
+
+}  // namespace pda_registration

@@ -1,0 +1,79 @@
+#include "pda_registration/core/final_statistics.hpp"
+
+#include <chrono>
+#include <cmath>
+#include <limits>
+
+#include "pda_registration/core/association_weights.hpp"
+#include "pda_registration/core/degeneracy.hpp"
+#include "pda_registration/core/noise_shapes.hpp"
+#include "pda_registration/core/pose_covariance.hpp"
+
+namespace pda_registration {
+namespace {
+
+// Inlier fraction over all used source points, and the mean distance of inliers to their
+// nearest candidate, at the final estimate.
+void fillInlierStatistics(const PointList& source, const CandidateSets& candidates,
+                          const Eigen::Isometry3d& T, double inlier_distance,
+                          RegistrationResult* result) {
+  size_t inliers = 0;
+  double distance_sum = 0.0;
+  for (size_t j = 0; j < candidates.sourceCount(); ++j) {
+    if (candidates.candidateCount(j) == 0) continue;
+    const Point x = T * source[j];
+    double best = std::numeric_limits<double>::infinity();
+    for (size_t c = candidates.offsets[j]; c < candidates.offsets[j + 1]; ++c) {
+      best = std::min(best, (candidates.points[c] - x).squaredNorm());
+    }
+    best = std::sqrt(best);
+    if (best < inlier_distance) {
+      ++inliers;
+      distance_sum += best;
+    }
+  }
+  result->inlier_fraction =
+      source.empty() ? 0.0 : static_cast<double>(inliers) / static_cast<double>(source.size());
+  result->mean_residual = inliers == 0 ? 0.0 : distance_sum / static_cast<double>(inliers);
+}
+
+}  // namespace
+
+// Covariance, inlier statistics and the degeneracy check at the final estimate.
+void fillFinalStatistics(const PointList& source, const SurfaceNormalMap& normal_map,
+                         const RegistrationParameters& p, const EmState& state,
+                         RegistrationWorkspace* workspace, RegistrationResult* result,
+                         Associations* associations) {
+  const CandidateSets& candidates = workspace->candidates;
+  computeShapeInputs(normal_map, source, candidates, state.T, p, &workspace->normals,
+                     &workspace->spread);
+  // The degeneracy check needs the normals even when the noise model does not.
+  const PointList isotropic_normals = workspace->normals.empty()
+                                          ? lookupNormals(normal_map, source, state.T, p.threads)
+                                          : PointList();
+  const PointList& normals = workspace->normals.empty() ? isotropic_normals : workspace->normals;
+  makeNoiseShapes(workspace->normals, workspace->spread, state.sigma_squared, p,
+                  &workspace->shapes);
+  const NoiseShapes& shapes = workspace->shapes;
+  computeWeightedCorrespondences(source, candidates, shapes, state.T, p.nu, state.sigma_squared,
+                                 p.threads, &workspace->e_step, &workspace->correspondences);
+  const WeightedCorrespondences& correspondences = workspace->correspondences;
+  const auto covariance_start = std::chrono::steady_clock::now();
+  PoseCovarianceTerms terms;
+  computePoseCovariance(correspondences, state.T, state.sigma_squared, p.nu, &result->covariance,
+                        &terms);
+  result->covariance_blocks = terms.blocks;
+  result->covariance_ms =
+      std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - covariance_start)
+          .count();
+  fillInlierStatistics(source, candidates, state.T, p.inlier_sigmas * result->sigma, result);
+  PointList moved(source.size());
+  for (size_t j = 0; j < source.size(); ++j) moved[j] = state.T * source[j];
+  result->degeneracy_ratio = constraintEigenvalueRatio(moved, normals);
+  if (associations) {
+    *associations =
+        computeAssociations(source, candidates, shapes, state.T, p.nu, state.sigma_squared);
+  }
+}
+
+}  // namespace pda_registration
