@@ -58,16 +58,6 @@ void computeCandidateWeights(const double* squared_residuals, size_t count, doub
   }
 }
 
-WeightedCorrespondences computeWeightedCorrespondences(
-    const PointList& source, const CandidateSets& candidates, const NoiseShapes& shapes,
-    const Eigen::Isometry3d& T_target_source, double nu, double sigma_squared, int threads) {
-  EStepBuffers buffers;
-  WeightedCorrespondences out;
-  computeWeightedCorrespondences(source, candidates, shapes, T_target_source, nu, sigma_squared,
-                                 threads, &buffers, &out);
-  return out;
-}
-
 void computeWeightedCorrespondences(const PointList& source, const CandidateSets& candidates,
                                     const NoiseShapes& shapes,
                                     const Eigen::Isometry3d& T_target_source, double nu,
@@ -80,10 +70,11 @@ void computeWeightedCorrespondences(const PointList& source, const CandidateSets
   std::vector<double>& weights = buffers->weights;
   std::vector<double>& across = buffers->across;
   std::vector<double>& along = buffers->along;
-  means.assign(n, Point::Zero());
+  // Only a positive weight marks a slot as written (and the others are read only then).
   weights.assign(n, 0.0);
-  across.assign(n, 0.0);
-  along.assign(n, 0.0);
+  means.resize(n);
+  across.resize(n);
+  along.resize(n);
 
 #pragma omp parallel num_threads(std::max(threads, 1))
   {

@@ -48,13 +48,6 @@ void lookupNormals(const SurfaceNormalMap& map, const PointList& source, const E
   }
 }
 
-PointList lookupNormals(const SurfaceNormalMap& map, const PointList& source,
-                        const Eigen::Isometry3d& T, int threads) {
-  PointList normals;
-  lookupNormals(map, source, T, threads, &normals);
-  return normals;
-}
-
 double computeShapeInputs(const SurfaceNormalMap& normal_map, const PointList& source,
                           const CandidateSets& candidates, const Eigen::Isometry3d& T,
                           const RegistrationParameters& p, PointList* normals,

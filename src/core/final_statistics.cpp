@@ -48,9 +48,10 @@ void fillFinalStatistics(const PointList& source, const SurfaceNormalMap& normal
   computeShapeInputs(normal_map, source, candidates, state.T, p, &workspace->normals,
                      &workspace->spread);
   // The degeneracy check needs the normals even when the noise model does not.
-  const PointList isotropic_normals = workspace->normals.empty()
-                                          ? lookupNormals(normal_map, source, state.T, p.threads)
-                                          : PointList();
+  PointList isotropic_normals;
+  if (workspace->normals.empty()) {
+    lookupNormals(normal_map, source, state.T, p.threads, &isotropic_normals);
+  }
   const PointList& normals = workspace->normals.empty() ? isotropic_normals : workspace->normals;
   makeNoiseShapes(workspace->normals, workspace->spread, state.sigma_squared, p,
                   &workspace->shapes);

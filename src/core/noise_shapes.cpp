@@ -45,13 +45,6 @@ bool usesSamplingModel(const RegistrationParameters& p) {
   return p.surface_anisotropy > 1.0 && p.sampling_scale > 0.0;
 }
 
-NoiseShapes makeNoiseShapes(const PointList& normals, const std::vector<double>& spread,
-                            double sigma_squared, const RegistrationParameters& p) {
-  NoiseShapes shapes;
-  makeNoiseShapes(normals, spread, sigma_squared, p, &shapes);
-  return shapes;
-}
-
 void makeNoiseShapes(const PointList& normals, const std::vector<double>& spread,
                      double sigma_squared, const RegistrationParameters& p, NoiseShapes* out) {
   NoiseShapes& shapes = *out;

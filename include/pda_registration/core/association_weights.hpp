@@ -40,19 +40,15 @@ struct WeightedCorrespondences {
   size_t size() const { return source.size(); }
 };
 
-/// Runs the E-step at the current estimate for every source point with candidates, each in its
-/// noise shape (one per source point; isotropic when `shapes` is).
-WeightedCorrespondences computeWeightedCorrespondences(
-    const PointList& source, const CandidateSets& candidates, const NoiseShapes& shapes,
-    const Eigen::Isometry3d& T_target_source, double nu, double sigma_squared, int threads);
-
 /// The E-step's per-source-point slots, kept between calls (see registration_workspace.hpp).
 struct EStepBuffers {
   PointList means;
   std::vector<double> weights, across, along;
 };
 
-/// The same into *out, reusing its memory and the buffers' (EM calls this every iteration).
+/// Runs the E-step at the current estimate for every source point with candidates, each in its
+/// noise shape (one per source point; isotropic when `shapes` is), into *out. Reuses the memory
+/// of *out and of the buffers (EM calls this every iteration); overwrites all of it.
 void computeWeightedCorrespondences(const PointList& source, const CandidateSets& candidates,
                                     const NoiseShapes& shapes,
                                     const Eigen::Isometry3d& T_target_source, double nu,

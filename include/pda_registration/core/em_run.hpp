@@ -40,8 +40,6 @@ bool runEm(const PointList& source, const SurfaceNormalMap& normal_map,
 /// The target surface normal at every moved source point (zero where unknown).
 void lookupNormals(const SurfaceNormalMap& map, const PointList& source, const Eigen::Isometry3d& T,
                    int threads, PointList* normals);
-PointList lookupNormals(const SurfaceNormalMap& map, const PointList& source,
-                        const Eigen::Isometry3d& T, int threads);
 
 /// What the noise shapes of one run are made from: the target normals at the moved source points
 /// (not needed by the isotropic model: left empty) and the candidates' sampling spread (sampling

@@ -52,12 +52,9 @@ double targetThickness(const CandidateSets& candidates, const PointList& normals
 /// True when the parameters ask for the sampling model.
 bool usesSamplingModel(const RegistrationParameters& parameters);
 
-/// The shapes for one E-step at the current sigma^2. `normals` (one per source point) may be
-/// empty when the model is isotropic; `spread` (from candidateSpread) is only read by the
-/// sampling model.
-NoiseShapes makeNoiseShapes(const PointList& normals, const std::vector<double>& spread,
-                            double sigma_squared, const RegistrationParameters& parameters);
-/// The same into *shapes, reusing its memory (EM calls this every iteration).
+/// The shapes for one E-step at the current sigma^2, into *shapes (reusing its memory: EM calls
+/// this every iteration). `normals` (one per source point) may be empty when the model is
+/// isotropic; `spread` (from candidateSpread) is only read by the sampling model.
 void makeNoiseShapes(const PointList& normals, const std::vector<double>& spread,
                      double sigma_squared, const RegistrationParameters& parameters,
                      NoiseShapes* shapes);
