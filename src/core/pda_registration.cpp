@@ -4,7 +4,6 @@
 #include <chrono>
 #include <cmath>
 #include <exception>
-#include <limits>
 #include <sstream>
 
 #include "pda_registration/core/alignment_direction.hpp"
