@@ -5,6 +5,10 @@
 
 #include <cmath>
 #include <limits>
+#include <random>
+#include <vector>
+
+#include "pda_registration/core/degrees_of_freedom.hpp"
 
 using pda_registration::computeCandidateWeights;
 
@@ -81,4 +85,48 @@ TEST(AssociationWeights, LoneFarCandidateIsDownWeightedByStudentT) {
   computeCandidateWeights(residuals, 1, 5.0, 1.0, posterior, weight);
   EXPECT_DOUBLE_EQ(posterior[0], 1.0);
   EXPECT_NEAR(weight[0], 8.0 / 105.0, 1e-12);
+}
+
+// nu's ECM update (degrees_of_freedom.hpp).
+TEST(DegreesOfFreedom, DigammaMatchesKnownValues) {
+  using pda_registration::digamma;
+  EXPECT_NEAR(digamma(1.0), -0.5772156649015329, 1e-10);  // -Euler's gamma
+  EXPECT_NEAR(digamma(0.5), -1.9635100260214235, 1e-10);  // -gamma - 2 ln 2
+  EXPECT_NEAR(digamma(10.0), 2.2517525890667211, 1e-10);
+}
+
+// Residuals drawn from a 3-d Student-t with nu degrees of freedom (one candidate per point, so
+// P(a) = 1): iterating the update as EM does lands near nu, and Gaussian residuals go towards the
+// upper bound.
+double estimatedNu(double true_nu, double start_nu) {
+  std::mt19937_64 generator(11);
+  std::normal_distribution<double> normal(0.0, 1.0);
+  std::vector<double> squared(50000);
+  for (double& m : squared) {
+    const double scale =
+        std::isinf(true_nu)
+            ? 1.0
+            : std::gamma_distribution<double>(0.5 * true_nu, 2.0 / true_nu)(generator);
+    double r2 = 0.0;
+    for (int i = 0; i < 3; ++i) r2 += std::pow(normal(generator), 2);
+    m = r2 / scale;
+  }
+  double nu = start_nu;
+  for (int iteration = 0; iteration < 50; ++iteration) {
+    double statistic = 0.0;
+    for (double m : squared) {
+      const double u = (nu + 3.0) / (nu + m);
+      statistic += std::log(u) - u;
+    }
+    nu = pda_registration::updateDegreesOfFreedom(nu, statistic / squared.size(), 3.0);
+  }
+  return nu;
+}
+
+TEST(DegreesOfFreedom, EmUpdateRecoversTheTailsOfTheData) {
+  EXPECT_NEAR(estimatedNu(4.0, 20.0), 4.0, 1.0);
+  EXPECT_NEAR(estimatedNu(10.0, 2.0), 10.0, 2.0);
+  EXPECT_GT(estimatedNu(kInf, 5.0), 30.0);  // towards the bound: a flat likelihood, slow steps
+  // A statistic that is not a number leaves nu as it was.
+  EXPECT_EQ(pda_registration::updateDegreesOfFreedom(7.0, std::nan(""), 3.0), 7.0);
 }

@@ -27,3 +27,9 @@ catkin_add_gtest(warp_rigid_fit_test warp_rigid_fit_test.cpp)
 target_compile_options(warp_rigid_fit_test PRIVATE ${PDA_WARNINGS})
 target_link_libraries(warp_rigid_fit_test
   pda_test_support pda_registration_simulation gtest_main)
+
+# Reach and verdict of the defaults: the approach subset, the lattice from 10 deg, RGB-D fragments.
+catkin_add_gtest(registration_reach_test registration_reach_test.cpp)
+target_compile_options(registration_reach_test PRIVATE ${PDA_WARNINGS})
+target_link_libraries(registration_reach_test
+  pda_test_support pda_registration_simulation gtest_main)

@@ -70,11 +70,14 @@ void computeWeightedCorrespondences(const PointList& source, const CandidateSets
   std::vector<double>& weights = buffers->weights;
   std::vector<double>& across = buffers->across;
   std::vector<double>& along = buffers->along;
+  std::vector<double>& log_u_minus_u = buffers->log_u_minus_u;
   // Only a positive weight marks a slot as written (and the others are read only then).
   weights.assign(n, 0.0);
   means.resize(n);
   across.resize(n);
   along.resize(n);
+  log_u_minus_u.resize(n);
+  const bool gaussian = std::isinf(nu);
 
 #pragma omp parallel num_threads(std::max(threads, 1))
   {
@@ -95,11 +98,15 @@ void computeWeightedCorrespondences(const PointList& source, const CandidateSets
       }
       computeCandidateWeights(residuals.data(), count, nu, sigma_squared, posterior.data(),
                               rho.data());
-      double w = 0.0;
+      double w = 0.0, precision_term = 0.0;
       Point mean = Point::Zero();
       for (size_t i = 0; i < count; ++i) {
         w += rho[i];
         mean += rho[i] * y[i];
+        if (!gaussian && posterior[i] > 0.0) {
+          const double u = rho[i] / posterior[i];
+          precision_term += posterior[i] * (std::log(u) - u);
+        }
       }
       if (!(w > 0.0)) continue;
       mean /= w;
@@ -114,6 +121,7 @@ void computeWeightedCorrespondences(const PointList& source, const CandidateSets
       weights[j] = w;
       across[j] = spread_across;
       along[j] = spread_along;
+      log_u_minus_u[j] = precision_term;
     }
   }
 
@@ -127,8 +135,10 @@ void computeWeightedCorrespondences(const PointList& source, const CandidateSets
   out.inverse_kappa.clear();
   out.spread_across.clear();
   out.spread_along.clear();
+  double precision_sum = 0.0;
   for (size_t j = 0; j < n; ++j) {
     if (!(weights[j] > 0.0)) continue;
+    precision_sum += log_u_minus_u[j];
     out.source_index.push_back(j);
     out.source.push_back(source[j]);
     out.target_mean.push_back(means[j]);
@@ -138,6 +148,7 @@ void computeWeightedCorrespondences(const PointList& source, const CandidateSets
     out.spread_across.push_back(across[j]);
     out.spread_along.push_back(along[j]);
   }
+  out.mean_log_u_minus_u = out.size() == 0 ? 0.0 : precision_sum / static_cast<double>(out.size());
 }
 
 Associations computeAssociations(const PointList& source, const CandidateSets& candidates,

@@ -6,6 +6,7 @@
 #include "pda_registration/core/association_weights.hpp"
 #include "pda_registration/core/ceres_solver.hpp"
 #include "pda_registration/core/closed_form_solver.hpp"
+#include "pda_registration/core/degrees_of_freedom.hpp"
 #include "pda_registration/core/gauss_newton_solver.hpp"
 #include "pda_registration/core/noise_shapes.hpp"
 
@@ -80,7 +81,7 @@ bool runEm(const PointList& source, const SurfaceNormalMap& normal_map,
   for (int iteration = 0; iteration < p.max_em_iterations; ++iteration) {
     makeNoiseShapes(workspace->normals, workspace->spread, state->sigma_squared, p,
                     &workspace->shapes);
-    computeWeightedCorrespondences(source, candidates, workspace->shapes, state->T, p.nu,
+    computeWeightedCorrespondences(source, candidates, workspace->shapes, state->T, state->nu,
                                    state->sigma_squared, p.threads, &workspace->e_step,
                                    &workspace->correspondences);
     const WeightedCorrespondences& correspondences = workspace->correspondences;
@@ -89,6 +90,9 @@ bool runEm(const PointList& source, const SurfaceNormalMap& normal_map,
     if (estimate_sigma) {
       state->sigma_squared =
           std::max(estimateSigmaSquared(correspondences, T_next), sigma_squared_floor);
+    }
+    if (p.nu_mode == NuMode::kEstimated) {
+      state->nu = updateDegreesOfFreedom(state->nu, correspondences.mean_log_u_minus_u, 3.0);
     }
     const Increment step = incrementBetween(state->T, T_next);
     state->T = T_next;

@@ -56,12 +56,12 @@ void fillFinalStatistics(const PointList& source, const SurfaceNormalMap& normal
   makeNoiseShapes(workspace->normals, workspace->spread, state.sigma_squared, p,
                   &workspace->shapes);
   const NoiseShapes& shapes = workspace->shapes;
-  computeWeightedCorrespondences(source, candidates, shapes, state.T, p.nu, state.sigma_squared,
+  computeWeightedCorrespondences(source, candidates, shapes, state.T, state.nu, state.sigma_squared,
                                  p.threads, &workspace->e_step, &workspace->correspondences);
   const WeightedCorrespondences& correspondences = workspace->correspondences;
   const auto covariance_start = std::chrono::steady_clock::now();
   PoseCovarianceTerms terms;
-  computePoseCovariance(correspondences, state.T, state.sigma_squared, p.nu, &result->covariance,
+  computePoseCovariance(correspondences, state.T, state.sigma_squared, state.nu, &result->covariance,
                         &terms);
   result->covariance_blocks = terms.blocks;
   result->covariance_ms =
@@ -73,7 +73,7 @@ void fillFinalStatistics(const PointList& source, const SurfaceNormalMap& normal
   result->degeneracy_ratio = constraintEigenvalueRatio(moved, normals);
   if (associations) {
     *associations =
-        computeAssociations(source, candidates, shapes, state.T, p.nu, state.sigma_squared);
+        computeAssociations(source, candidates, shapes, state.T, state.nu, state.sigma_squared);
   }
 }
 

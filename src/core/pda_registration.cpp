@@ -13,6 +13,7 @@
 #include "pda_registration/core/nearest_rotation.hpp"
 #include "pda_registration/core/point_filter.hpp"
 #include "pda_registration/core/pose_covariance.hpp"
+#include "pda_registration/core/source_budget.hpp"
 
 namespace pda_registration {
 namespace {
@@ -139,6 +140,10 @@ RegistrationResult PdaRegistration::alignUnchecked(const PointList& source_input
   source = source_input;
   result.source_points_dropped = removeNonFinitePoints(&source);
   if (p.source_voxel_size > 0.0) source = voxelDownsample(source, p.source_voxel_size);
+  if (p.max_source_points > 0) {
+    PointList budgeted = applySourceBudget(source, static_cast<size_t>(p.max_source_points));
+    if (!budgeted.empty()) source = std::move(budgeted);
+  }
   result.source_points_used = source.size();
   if (source.size() < static_cast<size_t>(p.min_correspondences)) {
     std::ostringstream reason;
@@ -179,7 +184,7 @@ RegistrationResult PdaRegistration::alignUnchecked(const PointList& source_input
   coarse_source.clear();
   if (p.max_runs > 1 && p.coarse_stride > 1 &&
       source.size() / p.coarse_stride >= 20 * static_cast<size_t>(p.min_correspondences)) {
-    for (size_t j = 0; j < source.size(); j += p.coarse_stride) coarse_source.push_back(source[j]);
+    coarse_source = applySourceBudget(source, source.size() / p.coarse_stride);
   }
   enum class Stage { kApproach, kSettle, kRefine };
   Stage stage = p.max_runs == 1 ? Stage::kRefine
@@ -187,13 +192,19 @@ RegistrationResult PdaRegistration::alignUnchecked(const PointList& source_input
 
   EmState state;
   state.T = T;
+  state.nu = p.nu;
   if (p.sigma_mode == SigmaMode::kFixed) state.sigma_squared = p.fixed_sigma * p.fixed_sigma;
   CandidateSets& candidates = workspace_.candidates;
   Increment last_run_step{0.0, 0.0};
   bool em_settled = false;  // did the last run's EM loop stop on the epsilons?
 
-  for (int run = 1; run <= p.max_runs; ++run) {
+  // max_runs bounds the work, counted in runs over the whole source: an approach run over the
+  // subset counts as the subset's share. Sliding along a valley of the ground can take the
+  // approach many cheap runs (a lidar scan from 10-20 deg away: 40-150 of them).
+  double work = 0.0;
+  for (int run = 1; work < p.max_runs; ++run) {
     const PointList& active = stage == Stage::kApproach ? coarse_source : source;
+    work += static_cast<double>(active.size()) / static_cast<double>(source.size());
     const double radius = stage == Stage::kRefine && p.max_runs > 1
                               ? candidateRadius(p, state.sigma_squared)
                               : p.radius;
@@ -234,6 +245,7 @@ RegistrationResult PdaRegistration::alignUnchecked(const PointList& source_input
   T = state.T;
   result.T_target_source = T;
   result.sigma = std::sqrt(state.sigma_squared);
+  result.nu = state.nu;
   // Statistics on every source point (the loop may have stopped in the coarse stage).
   if (candidates.sourceCount() != source.size()) {
     findCandidateSets(*index, source, T, p.k, p.radius, p.threads, &workspace_.search, &candidates);
@@ -245,7 +257,8 @@ RegistrationResult PdaRegistration::alignUnchecked(const PointList& source_input
     if (p.max_runs == 1) {
       reason << "EM did not settle in " << p.max_em_iterations << " iterations";
     } else {
-      reason << "not converged after " << p.max_runs << " runs (last run moved "
+      reason << "not converged after " << result.runs << " runs (the work of " << p.max_runs
+             << " over the whole source; the last moved "
              << last_run_step.translation << " and rotated " << last_run_step.rotation << " rad)";
     }
     result.reason = reason.str();
@@ -254,6 +267,15 @@ RegistrationResult PdaRegistration::alignUnchecked(const PointList& source_input
     reason << "degenerate geometry: the overlap constrains some direction weakly (eigenvalue "
            << "ratio " << result.degeneracy_ratio << " < " << p.degeneracy_threshold
            << ", e.g. a single plane or a corridor)";
+    result.converged = false;
+    result.reason = reason.str();
+  } else if (p.sigma_mode == SigmaMode::kEstimated && 6.0 * result.sigma >= p.radius) {
+    // The refine runs narrow the candidates to 6 sigma; here the radius cut them instead, so the
+    // residuals are as wide as the search itself: the clouds were never brought onto each other.
+    std::ostringstream reason;
+    reason << "unresolved: the residual scale sigma " << result.sigma
+           << " is not below radius / 6 (" << p.radius / 6.0
+           << "): the estimate is not at a fit of the two clouds";
     result.converged = false;
     result.reason = reason.str();
   } else if (result.inlier_fraction < p.min_support_fraction) {

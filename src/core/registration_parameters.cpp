@@ -19,6 +19,8 @@ std::string validateParameters(const RegistrationParameters& p) {
     error << "min_radius must be > 0 and finite (got " << p.min_radius << ")";
   else if (std::isnan(p.nu) || !(p.nu > 0.0))
     error << "nu must be > 0 or inf (got " << p.nu << ")";
+  else if (p.nu_mode == NuMode::kEstimated && !std::isfinite(p.nu))
+    error << "nu_mode estimated needs a finite starting nu (got " << p.nu << ")";
   else if (p.sigma_mode == SigmaMode::kFixed && !finitePositive(p.fixed_sigma))
     error << "fixed_sigma must be > 0 and finite (got " << p.fixed_sigma << ")";
   else if (p.max_em_iterations < 1 || p.max_em_iterations > 1000)
@@ -79,6 +81,8 @@ const char* toString(MStepSolver solver) {
 
 const char* toString(SigmaMode mode) { return mode == SigmaMode::kFixed ? "fixed" : "estimated"; }
 
+const char* toString(NuMode mode) { return mode == NuMode::kFixed ? "fixed" : "estimated"; }
+
 bool parseSolver(const std::string& text, MStepSolver* solver) {
   if (text == "gauss_newton")
     *solver = MStepSolver::kGaussNewton;
@@ -96,6 +100,16 @@ bool parseSigmaMode(const std::string& text, SigmaMode* mode) {
     *mode = SigmaMode::kEstimated;
   else if (text == "fixed")
     *mode = SigmaMode::kFixed;
+  else
+    return false;
+  return true;
+}
+
+bool parseNuMode(const std::string& text, NuMode* mode) {
+  if (text == "fixed")
+    *mode = NuMode::kFixed;
+  else if (text == "estimated")
+    *mode = NuMode::kEstimated;
   else
     return false;
   return true;

@@ -12,7 +12,8 @@ LiveParameters liveParametersFrom(const PdaRegistrationConfig& c) {
   p.radius = c.radius;
   p.min_radius = c.min_radius;
   p.nu = c.gaussian ? std::numeric_limits<double>::infinity() : c.nu;
-  parseSigmaMode(c.sigma_mode, &p.sigma_mode);  // the .cfg enum only offers valid names
+  parseNuMode(c.nu_mode, &p.nu_mode);  // the .cfg enums only offer valid names
+  parseSigmaMode(c.sigma_mode, &p.sigma_mode);
   p.fixed_sigma = c.fixed_sigma;
   p.surface_anisotropy = c.surface_anisotropy;
   p.sampling_scale = c.sampling_scale;

@@ -13,6 +13,9 @@ constexpr double kDegrees = M_PI / 180.0;
 constexpr uint64_t kKinectStream = 1;
 constexpr uint64_t kVelodyneStream = 2;
 constexpr uint64_t kDenseLidarStream = 3;
+constexpr uint64_t kSparseKinectStream = 4;
+// The two fragments of a fragment pair: the first and the last 60 % of the walkway loop.
+constexpr double kFragmentLength = 0.6;
 constexpr double kOutdoorDenseLidarHeight = 1.9;   // [m] a mapping vehicle's roof
 constexpr double kOutdoorSparseLidarHeight = 1.7;  // [m] a car's roof
 
@@ -76,6 +79,18 @@ std::vector<Eigen::Isometry3d> denseLidarPoses(const SimulatedMaps& maps,
   return poses;
 }
 
+// The frames of a hand-held Kinect scan at `poses`, accumulated (scene frame).
+PointList kinectScan(const SimulatedMaps& maps, const std::vector<Eigen::Isometry3d>& poses,
+                     const MapSimulationOptions& options, uint64_t stream) {
+  PointList scan;
+  for (size_t i = 0; i < poses.size(); ++i) {
+    const PointList frame = simulateKinectFrame(maps.scene, poses[i], options.kinect,
+                                                streamSeed(options.seed, stream, i));
+    scan.insert(scan.end(), frame.begin(), frame.end());
+  }
+  return scan;
+}
+
 }  // namespace
 
 std::string validateSimulationOptions(const MapSimulationOptions& options) {
@@ -83,6 +98,9 @@ std::string validateSimulationOptions(const MapSimulationOptions& options) {
     return "a Kinect cannot map an outdoor scene (0.5-4.5 m range): use a lidar dense sensor";
   if (options.same_pose && options.dense_sensor == DenseSensor::kKinect)
     return "same_pose needs a lidar dense sensor (vlp16 or lidar64)";
+  if (options.sparse_sensor == SparseSensor::kKinectFragment &&
+      (options.scene != SceneKind::kOffice || options.dense_sensor != DenseSensor::kKinect))
+    return "a Kinect fragment source needs the office scene and a Kinect dense map";
   if (options.dense_revolutions < 1) return "dense_revolutions must be >= 1";
   if (options.velodyne_revolutions < 1) return "velodyne_revolutions must be >= 1";
   return "";
@@ -123,15 +141,13 @@ SimulatedMaps simulateMaps(const MapSimulationOptions& options) {
   const VelodyneParameters sparse_lidar =
       options.same_pose ? sameSensorSparseLidar(options) : options.velodyne;
 
+  const bool fragments = options.sparse_sensor == SparseSensor::kKinectFragment;
   PointList dense;
   if (options.dense_sensor == DenseSensor::kKinect) {
-    maps.kinect_poses = kinectTrajectory(maps.office, options.kinect_frames);
-    for (size_t i = 0; i < maps.kinect_poses.size(); ++i) {
-      const PointList frame =
-          simulateKinectFrame(maps.scene, maps.kinect_poses[i], options.kinect,
-                              streamSeed(options.seed, kKinectStream, i));
-      dense.insert(dense.end(), frame.begin(), frame.end());
-    }
+    maps.kinect_poses =
+        fragments ? kinectTrajectory(maps.office, options.kinect_frames, 0.0, kFragmentLength)
+                  : kinectTrajectory(maps.office, options.kinect_frames);
+    dense = kinectScan(maps, maps.kinect_poses, options, kKinectStream);
   } else {
     maps.dense_lidar_poses =
         options.same_pose ? std::vector<Eigen::Isometry3d>(options.dense_revolutions,
@@ -152,6 +168,14 @@ SimulatedMaps simulateMaps(const MapSimulationOptions& options) {
   // T_target_source_unwarped says.
   const Eigen::Isometry3d T_source_target = maps.T_target_source_unwarped.inverse();
   PointList sparse_in_scene;
+  if (fragments) {
+    lidar_poses.clear();
+    const std::vector<Eigen::Isometry3d> poses = kinectTrajectory(
+        maps.office, options.kinect_frames, 1.0 - kFragmentLength, 1.0);
+    sparse_in_scene = voxelDownsample(kinectScan(maps, poses, options, kSparseKinectStream),
+                                      options.dense_voxel_size);
+    for (const Point& p : sparse_in_scene) maps.sparse.push_back(T_source_target * p);
+  }
   for (size_t i = 0; i < lidar_poses.size(); ++i) {
     const PointList revolution = simulateVelodyneRevolution(
         maps.scene, lidar_poses[i], sparse_lidar, streamSeed(options.seed, kVelodyneStream, i));

@@ -41,13 +41,14 @@ Eigen::Isometry3d sensorPose(const Eigen::Vector3d& position, double yaw, double
   return pose;
 }
 
-std::vector<Eigen::Isometry3d> kinectTrajectory(const OfficeScene& office, int frames) {
+std::vector<Eigen::Isometry3d> kinectTrajectory(const OfficeScene& office, int frames,
+                                                double begin, double end) {
   // Right of the travel direction is the outer wall on a counter-clockwise loop.
   const std::array<double, 3> yaw_offsets = {-65.0 * kDegrees, 65.0 * kDegrees, 0.0};
   const std::array<double, 3> pitches = {20.0 * kDegrees, 15.0 * kDegrees, 25.0 * kDegrees};
   std::vector<Eigen::Isometry3d> poses;
   for (int i = 0; i < frames; ++i) {
-    const LoopPoint point = walkwayPoint(office, (i + 0.5) / frames);
+    const LoopPoint point = walkwayPoint(office, begin + (end - begin) * (i + 0.5) / frames);
     poses.push_back(sensorPose(Eigen::Vector3d(point.position.x(), point.position.y(), 1.3),
                                point.heading + yaw_offsets[i % 3], pitches[i % 3]));
   }

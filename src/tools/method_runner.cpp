@@ -4,7 +4,6 @@
 #include <chrono>
 
 #include "pda_registration/core/pda_registration.hpp"
-#include "pda_registration/core/source_budget.hpp"
 
 namespace pda_registration {
 
@@ -33,10 +32,7 @@ MethodOutcome runMethod(const std::string& method, const PointList& target, cons
   const auto start = std::chrono::steady_clock::now();
   PdaRegistration registration(settings.pda);
   registration.setTarget(target);
-  // The nodelet's per-alignment budget, when asked for (timed, as in the nodelet).
-  const PointList budgeted = applySourceBudget(
-      source, static_cast<size_t>(std::max(settings.pda.max_source_points, 0)));
-  outcome.result = registration.align(budgeted.empty() ? source : budgeted, T_target_source_initial);
+  outcome.result = registration.align(source, T_target_source_initial);
   outcome.result.time_ms =
       std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
   return outcome;

@@ -112,6 +112,7 @@ int main(int argc, char** argv) {
   json.add("time_ms", compared.empty() ? r.time_ms : median(times[method]));
   if (outcome.pda_fields) {
     json.add("runs", r.runs).add("em_iterations", r.em_iterations).add("sigma", r.sigma);
+    json.add("nu", r.nu);
     json.add("inlier_fraction", r.inlier_fraction).add("mean_residual", r.mean_residual);
     json.add("source_points", r.source_points_used).add("source_dropped", r.source_points_dropped);
     json.add("target_points", r.target_points_used).add("target_dropped", r.target_points_dropped);
@@ -130,7 +131,7 @@ int main(int argc, char** argv) {
     json.add("expected_error_m", expected.translation)
         .add("expected_error_deg", expected.rotation * 180.0 / M_PI);
   } else {
-    json.addRaw("runs", "null").addRaw("sigma", "null").addRaw("inlier_fraction", "null");
+    json.addRaw("runs", "null").addRaw("sigma", "null").addRaw("nu", "null").addRaw("inlier_fraction", "null");
     json.add("fitness", outcome.fitness);
   }
   if (has_ground_truth) {

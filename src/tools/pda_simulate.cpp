@@ -40,6 +40,10 @@ const char* kUsage =
     "  --dense-sensor S          kinect (office default), vlp16 or lidar64 (outdoor default):\n"
     "                            what builds the dense map\n"
     "  --dense-revolutions N     lidar dense sensors: revolutions in the dense map (4)\n"
+    "  --sparse-sensor S         vlp16 (default) or kinect: the source is a second hand-held\n"
+    "                            Kinect fragment (the dense map scans the first 60 % of the\n"
+    "                            office's walkway, the source the last 60 %: RGB-D fragments\n"
+    "                            overlapping on two fifths of the loop)\n"
     "  --same-pose               lidar dense sensors: the dense revolutions are taken at the\n"
     "                            sparse scan's own pose by the same sensor (same azimuth grid),\n"
     "                            and the sparse map is one more revolution cut to the rings\n"
@@ -71,7 +75,7 @@ int usageError(const std::string& message) { return reportError("pda_simulate", 
 }  // namespace
 
 int main(int argc, char** argv) {
-  CommandLine cl({"output", "bag", "seed", "scene", "dense-sensor", "dense-revolutions",
+  CommandLine cl({"output", "bag", "seed", "scene", "dense-sensor", "sparse-sensor", "dense-revolutions",
                   "kinect-frames", "velodyne-revolutions", "dense-voxel",
                   "yaw-deg", "pitch-deg", "roll-deg", "translation", "distortion", "seed-error-deg",
                   "seed-error-m", "dense-messages", "sparse-messages", "tf-rate"},
@@ -119,6 +123,11 @@ int main(int argc, char** argv) {
   else
     return usageError("--dense-sensor: expected kinect, vlp16 or lidar64 (got '" + dense_sensor +
                       "')");
+  const std::string sparse_sensor = cl.text("sparse-sensor", "vlp16");
+  if (sparse_sensor == "kinect")
+    options.sparse_sensor = SparseSensor::kKinectFragment;
+  else if (sparse_sensor != "vlp16")
+    return usageError("--sparse-sensor: expected vlp16 or kinect (got '" + sparse_sensor + "')");
   if (!cl.integer("dense-revolutions", &options.dense_revolutions, 1, 100))
     return usageError(cl.error());
   options.same_pose = cl.has("same-pose");

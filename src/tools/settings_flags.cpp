@@ -14,6 +14,7 @@ std::set<std::string> settingsFlagNames() {
           "em-iterations",
           "solver",
           "sigma-mode",
+          "nu-mode",
           "fixed-sigma",
           "threads",
           "source-voxel",
@@ -75,6 +76,8 @@ std::string settingsFlagsHelp() {
        << "  --normal-voxel V        voxel of the target normal map [m] (" << p.normal_voxel_size
        << ")\n"
        << "  --sigma-mode M          estimated | fixed (" << toString(p.sigma_mode) << ")\n"
+       << "  --nu-mode M             fixed | estimated by EM from --nu on (" << toString(p.nu_mode)
+       << ")\n"
        << "  --fixed-sigma S         sigma in fixed mode [m] (" << p.fixed_sigma << ")\n"
        << "  --threads N             worker threads (" << p.threads << ")\n"
        << "  --source-voxel V        source voxel size [m], 0 = off (" << p.source_voxel_size
@@ -147,6 +150,10 @@ bool readSettingsFlags(CommandLine* cl, MethodSettings* settings,
   if (given("solver") && !parseSolver(cl->text("solver"), &p.solver)) {
     return cl->setError("--solver: " + quoted(cl->text("solver")) +
                         " is not gauss_newton, closed_form or ceres");
+  }
+  if (given("nu-mode") && !parseNuMode(cl->text("nu-mode"), &p.nu_mode)) {
+    return cl->setError("--nu-mode: " + quoted(cl->text("nu-mode")) +
+                        " is not fixed or estimated");
   }
   if (given("sigma-mode") && !parseSigmaMode(cl->text("sigma-mode"), &p.sigma_mode)) {
     return cl->setError("--sigma-mode: " + quoted(cl->text("sigma-mode")) +

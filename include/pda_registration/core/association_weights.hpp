@@ -36,6 +36,9 @@ struct WeightedCorrespondences {
   /// pose can remove; the shaped spread is spread_across + inverse_kappa * spread_along.
   std::vector<double> spread_across, spread_along;
   bool sampling = false;  ///< the shapes follow sigma (noise_shapes.hpp): sigma^2 updates differ
+  /// mean_j sum_i P(a_i) (log u_i - u_i), u_i = E[w | a_i]: the E-step's statistic for nu's
+  /// update (degrees_of_freedom.hpp); 0 for the Gaussian.
+  double mean_log_u_minus_u = 0.0;
 
   size_t size() const { return source.size(); }
 };
@@ -43,7 +46,7 @@ struct WeightedCorrespondences {
 /// The E-step's per-source-point slots, kept between calls (see registration_workspace.hpp).
 struct EStepBuffers {
   PointList means;
-  std::vector<double> weights, across, along;
+  std::vector<double> weights, across, along, log_u_minus_u;
 };
 
 /// Runs the E-step at the current estimate for every source point with candidates, each in its

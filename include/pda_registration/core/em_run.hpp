@@ -28,6 +28,7 @@ bool isSmall(const Increment& increment, const RegistrationParameters& p);
 struct EmState {
   Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
   double sigma_squared = 0.0;  ///< 0 until the first run estimates it
+  double nu = 5.0;             ///< Student-t degrees of freedom (estimated or the parameter)
 };
 
 /// One run: EM on the workspace's candidate sets (fixed during the run) until a step is below

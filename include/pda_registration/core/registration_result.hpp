@@ -23,6 +23,7 @@ struct RegistrationResult {
   int runs = 0;           ///< candidate-set computations (outer loop)
   int em_iterations = 0;  ///< E/M iterations summed over runs
   double sigma = 0.0;     ///< final residual scale [length]
+  double nu = 0.0;        ///< Student-t degrees of freedom at the end (estimated or the parameter)
 
   size_t source_points_used = 0;             ///< finite source points after downsampling
   size_t source_points_dropped = 0;          ///< NaN/Inf source points dropped

@@ -37,10 +37,20 @@ enum class DenseSensor {
   kLidar64,  ///< revolutions of a 64-beam lidar (lidar64Parameters)
 };
 
+/// What builds the sparse map (the source).
+enum class SparseSensor {
+  kVlp16,   ///< revolutions of a VLP-16 (or, with same_pose, the dense lidar cut to +-15 deg)
+  /// A second hand-held Kinect fragment (office only): the dense map is the Kinect scan of the
+  /// first 60 % of the walkway loop, the source the scan of the last 60 %, both on the same voxel
+  /// grid. They overlap on two fifths of the loop: the RGB-D fragment pairs of indoor mapping.
+  kKinectFragment,
+};
+
 struct MapSimulationOptions {
   uint64_t seed = 1;               ///< scene layout and sensor noise
   SceneKind scene = SceneKind::kOffice;
   DenseSensor dense_sensor = DenseSensor::kKinect;
+  SparseSensor sparse_sensor = SparseSensor::kVlp16;
   /// Lidar dense sensors: revolutions accumulated into the dense map.
   int dense_revolutions = 4;
   /// Lidar dense sensors only: the dense revolutions are taken from the sparse scan's own pose,
@@ -49,7 +59,7 @@ struct MapSimulationOptions {
   /// Every sparse return then lies on the dense map's sampling lattice: the case where a yaw of
   /// whole azimuth steps fits the ground almost as well as the truth.
   bool same_pose = false;
-  int kinect_frames = 24;          ///< depth frames around the walkway loop
+  int kinect_frames = 24;          ///< depth frames around the walkway loop (per fragment)
   int velodyne_revolutions = 3;    ///< lidar stops around the loop, one revolution each
   double dense_voxel_size = 0.03;  ///< [m] voxel grid of the accumulated dense map; 0 keeps all
   double distortion = 0.0;         ///< DriftDistortion::amount applied to the dense map

@@ -21,8 +21,10 @@ LoopPoint walkwayPoint(const OfficeScene& office, double fraction);
 
 /// A hand-held RGB-D scan: `frames` poses spread evenly around the loop at 1.3 m, looking in
 /// turn to the right (towards the walls), to the left (towards the desks) and ahead, tilted
-/// down to see the floor.
-std::vector<Eigen::Isometry3d> kinectTrajectory(const OfficeScene& office, int frames);
+/// down to see the floor. A part of the loop, from fraction `begin` to `end` (which may pass 1
+/// and wrap), makes one fragment of a scan.
+std::vector<Eigen::Isometry3d> kinectTrajectory(const OfficeScene& office, int frames,
+                                                double begin = 0.0, double end = 1.0);
 
 /// A robot with the lidar 0.8 m above the floor, stopping `poses` times around the loop, level
 /// and facing along it.

@@ -1,0 +1,30 @@
+#pragma once
+// The Student-t's degrees of freedom nu, estimated from the data by EM as sigma is (the ECM update
+// of Liu & Rubin 1995, "ML estimation of the t distribution using EM and its extensions").
+//
+// With the latent precision w of each source point and its candidate association, the E-step
+// gives, per candidate, the posterior P(a_i) and u_i = E[w | a_i] = (nu + d) / (nu + m_i). The
+// expected complete-data log-likelihood is then maximised over nu by the root of
+//   log(nu/2) - psi(nu/2) + 1 + mean_j sum_i P(a_i) (log u_i - u_i) + psi((nu_old + d)/2)
+//     - log((nu_old + d)/2) = 0,
+// which is monotone in nu. How heavy the residuals' tails are (parts of one map the other never
+// saw, sampling coincidences, non-rigid drift) differs from pair to pair; a constant nu suits
+// some and not others, so nu follows the data like sigma does.
+
+namespace pda_registration {
+
+/// Bounds of the estimate. Below 1 the t has no mean; above kMaxDegreesOfFreedom it is Gaussian
+/// for every residual EM meets.
+constexpr double kMinDegreesOfFreedom = 1.0;
+constexpr double kMaxDegreesOfFreedom = 60.0;
+
+/// The digamma function psi(x) for x > 0.
+double digamma(double x);
+
+/// One ECM update of nu, in [kMinDegreesOfFreedom, kMaxDegreesOfFreedom]. (Not rounded: ECM's
+/// steps shrink near the optimum, and rounding them stalls it short of it; a non-integer nu costs
+/// the E-step a std::pow per candidate.) `mean_log_u_minus_u` is mean_j sum_i P(a_i)(log u_i - u_i) from the
+/// E-step run with nu_old; `dimension` is d (3). Returns nu_old when the statistic is not finite.
+double updateDegreesOfFreedom(double nu_old, double mean_log_u_minus_u, double dimension);
+
+}  // namespace pda_registration

@@ -1,0 +1,115 @@
+// How far from the truth the defaults still find it, and what they say when they do not: the
+// approach stage's source subset, the per-alignment source budget, the "unresolved" verdict and
+// RGB-D fragment pairs (issue "Registration that holds on data it was never tuned on").
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <random>
+
+#include "pda_registration/core/error_metrics.hpp"
+#include "pda_registration/core/pda_registration.hpp"
+#include "pda_registration/core/perturbation.hpp"
+#include "pda_registration/core/source_budget.hpp"
+#include "pda_registration/simulation/map_simulation.hpp"
+
+namespace pda_registration {
+namespace simulation {
+namespace {
+
+double alignedError(const SimulatedMaps& maps, const RegistrationParameters& parameters,
+                    double degrees, double metres, uint64_t seed, RegistrationResult* out) {
+  PdaRegistration registration(parameters);
+  EXPECT_TRUE(registration.setTarget(maps.dense));
+  const Eigen::Isometry3d initial =
+      maps.T_target_source * randomPerturbation(degrees, metres, seed);
+  *out = registration.align(maps.sparse, initial);
+  return poseError(maps.sparse, out->T_target_source, maps.T_target_source).mean_distance;
+}
+
+// A static 64-beam lidar in a car park re-observed by itself (lattice_registration_test.cpp).
+const SimulatedMaps& latticeMaps() {
+  static const SimulatedMaps maps = [] {
+    MapSimulationOptions options;
+    options.seed = 3;
+    options.scene = SceneKind::kOutdoor;
+    options.dense_sensor = DenseSensor::kLidar64;
+    options.same_pose = true;
+    options.dense_voxel_size = 0.0;
+    return simulateMaps(options);
+  }();
+  return maps;
+}
+
+// The approach stage aligns a quarter of the source. Taken as every 4th point in storage order,
+// a scan stored firing by firing (all lasers of one azimuth, then the next) gave 8 of 32 rings.
+TEST(ApproachSubset, KeepsEveryRingOfAScanStoredFiringByFiring) {
+  constexpr int kRings = 32, kColumns = 1000;
+  PointList scan;
+  for (int column = 0; column < kColumns; ++column) {
+    for (int ring = 0; ring < kRings; ++ring) scan.emplace_back(column, ring, 0.0);
+  }
+  const PointList subset = applySourceBudget(scan, scan.size() / 4);
+  ASSERT_EQ(subset.size(), scan.size() / 4);
+  std::vector<int> per_ring(kRings, 0);
+  for (const Point& p : subset) ++per_ring[static_cast<int>(p.y())];
+  for (int ring = 0; ring < kRings; ++ring) {
+    EXPECT_NEAR(per_ring[ring], kColumns / 4, kColumns / 10) << "ring " << ring;
+  }
+}
+
+// These seeds ended 0.76-1.17 m off (not converged after 50 runs) when the approach stage used a
+// storage-order stride: the subset slid along the ground's valley for 50 runs.
+TEST(Reach, TheLatticeIsFoundFromTenDegreesAndHalfAMetre) {
+  for (uint64_t seed : {3u, 8u, 10u}) {
+    RegistrationResult result;
+    const double error = alignedError(latticeMaps(), RegistrationParameters(), 10.0, 0.5, seed,
+                                      &result);
+    EXPECT_TRUE(result.converged) << "seed " << seed << ": " << result.reason;
+    EXPECT_LT(error, 0.01) << "seed " << seed;
+  }
+}
+
+// Two clouds that agree only to the scale of the candidate radius are not a registration, however
+// still the estimate has come to rest.
+TEST(HonestVerdict, ResidualsAsWideAsTheSearchAreUnresolved) {
+  const SimulatedMaps& maps = latticeMaps();
+  SimulatedMaps blurred = maps;
+  std::mt19937_64 generator(7);
+  std::normal_distribution<double> noise(0.0, 0.3);
+  for (Point& p : blurred.sparse) p += Point(noise(generator), noise(generator), noise(generator));
+  RegistrationResult result;
+  alignedError(blurred, RegistrationParameters(), 0.0, 0.0, 1, &result);
+  EXPECT_FALSE(result.converged);
+  EXPECT_NE(result.reason.find("unresolved"), std::string::npos) << result.reason;
+  EXPECT_GE(6.0 * result.sigma, RegistrationParameters().radius);
+}
+
+// Two hand-held RGB-D fragments of one office, overlapping on two fifths of the loop, both dense
+// (~300k points each): the source budget aligns 30000 of the source's points.
+TEST(Reach, RgbdFragmentsAlignWithDefaultsFromTenDegrees) {
+  MapSimulationOptions options;
+  options.seed = 3;
+  options.sparse_sensor = SparseSensor::kKinectFragment;
+  options.kinect_frames = 12;
+  const SimulatedMaps maps = simulateMaps(options);
+  ASSERT_GT(maps.sparse.size(), 100000u);
+  const RegistrationParameters defaults;
+  RegistrationResult result;
+  const double error = alignedError(maps, defaults, 10.0, 0.5, 1, &result);
+  EXPECT_TRUE(result.converged) << result.reason;
+  EXPECT_LT(error, 0.01);
+  EXPECT_EQ(result.source_points_used, static_cast<size_t>(defaults.max_source_points));
+}
+
+TEST(SimulationOptions, AKinectFragmentSourceNeedsTheOfficeAndAKinectMap) {
+  MapSimulationOptions options;
+  options.sparse_sensor = SparseSensor::kKinectFragment;
+  EXPECT_EQ(validateSimulationOptions(options), "");
+  options.dense_sensor = DenseSensor::kVlp16;
+  EXPECT_NE(validateSimulationOptions(options), "");
+}
+
+}  // namespace
+}  // namespace simulation
+}  // namespace pda_registration
