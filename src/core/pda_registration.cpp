@@ -227,9 +227,20 @@ RegistrationResult PdaRegistration::alignUnchecked(const PointList& source_input
       return result;
     }
     last_run_step = incrementBetween(T_run_start, state.T);
+    const bool stage_done = last_run_step.translation <= 10.0 * p.translation_epsilon &&
+                            last_run_step.rotation <= 10.0 * p.rotation_epsilon;
+    // An approach that comes to rest with residuals as wide as the search is not at a fit (the
+    // "unresolved" verdict below), and the whole source would only wander on from there: stop,
+    // so that the other direction (alignment_direction.hpp) is tried at once. (Stopping approaches
+    // that are still moving at that sigma after a quarter of the budget cut off slides that
+    // would have reached the truth.)
+    if (stage == Stage::kApproach && stage_done && p.sigma_mode == SigmaMode::kEstimated &&
+        36.0 * state.sigma_squared >= p.radius * p.radius) {
+      result.converged = true;  // at rest: the verdict below says what it is
+      break;
+    }
     if (stage != Stage::kRefine) {
-      if (last_run_step.translation <= 10.0 * p.translation_epsilon &&
-          last_run_step.rotation <= 10.0 * p.rotation_epsilon) {
+      if (stage_done) {
         stage = stage == Stage::kApproach ? Stage::kSettle : Stage::kRefine;
       }
       continue;  // convergence is only declared in the refine stage

@@ -39,6 +39,8 @@ const char* kUsage =
     "                         nodelet's target_cloud:=sparse); rows are named CASE:reversed\n"
     "  --thin-target V        voxel-downsample each case's target to V metres before every\n"
     "                         method (a sparser map); rows are named CASE:target_V\n"
+    "  --baseline-voxel V     the PCL methods only get both clouds voxel-downsampled to V\n"
+    "                         metres, as users run GICP on dense maps; PDA keeps its settings\n"
     "  PDA and the PCL methods share --radius (ICP/GICP max correspondence distance) and the\n"
     "  voxel sizes; pda_single is PDA with --runs 1 and up to 100 EM iterations.\n";
 
@@ -58,18 +60,23 @@ int fail(const std::string& message) { return reportError("pda_benchmark", messa
 
 int main(int argc, char** argv) {
   CommandLine cl = commandLineWithSettings(
-      {"data", "cases", "levels", "trials", "methods", "success", "csv", "seed", "thin-target"},
+      {"data", "cases", "levels", "trials", "methods", "success", "csv", "seed", "thin-target",
+       "baseline-voxel"},
       {"reverse"});
   MethodSettings settings;
   const int exit_code = startRegistrationTool("pda_benchmark", kUsage, argc, argv, &cl, &settings);
   if (exit_code >= 0) return exit_code;
   if (!cl.has("data")) return fail("--data is required");
   int trials = 10, first_seed = 1;
-  double success_threshold = 0.05, thin_target = 0.0;
+  double success_threshold = 0.05, thin_target = 0.0, baseline_voxel = 0.0;
   if (!cl.integer("trials", &trials, 1, 100000) || !cl.integer("seed", &first_seed, 0, 1 << 30) ||
       !cl.number("success", &success_threshold, 0.0, 1e6) ||
-      !cl.number("thin-target", &thin_target, 0.0, 1e3)) {
+      !cl.number("thin-target", &thin_target, 0.0, 1e3) ||
+      !cl.number("baseline-voxel", &baseline_voxel, 0.0, 1e3)) {
     return fail(cl.error());
+  }
+  if (baseline_voxel > 0.0) {
+    settings.baseline.source_voxel_size = settings.baseline.target_voxel_size = baseline_voxel;
   }
   std::vector<Level> levels;
   std::string bad_level;
