@@ -7,43 +7,18 @@
 
 #include <cmath>
 
-#include "pda_registration/core/error_metrics.hpp"
 #include "pda_registration/core/pda_registration.hpp"
-#include "pda_registration/core/perturbation.hpp"
 #include "pda_registration/core/surface_normals.hpp"
 #include "pda_registration/simulation/map_simulation.hpp"
+#include "test_support/simulated_cases.hpp"
 
 namespace pda_registration {
 namespace simulation {
 namespace {
 
-// The car park scanned by lidars only (maps kept whole, as pda_simulate keeps lidar maps).
-MapSimulationOptions carParkOptions(DenseSensor dense_sensor, bool same_pose) {
-  MapSimulationOptions options;
-  options.seed = 3;
-  options.scene = SceneKind::kOutdoor;
-  options.dense_sensor = dense_sensor;
-  options.same_pose = same_pose;
-  options.dense_voxel_size = 0.0;
-  return options;
-}
-
-// A static 64-beam lidar in a car park: the dense map is four revolutions of it, the sparse map
-// one more revolution cut to 11 rings: every sparse return lies on the dense map's lattice.
-const SimulatedMaps& latticeMaps() {
-  static const SimulatedMaps maps = simulateMaps(carParkOptions(DenseSensor::kLidar64, true));
-  return maps;
-}
-
-double alignedError(const SimulatedMaps& maps, const RegistrationParameters& parameters,
-                    double degrees, double metres, uint64_t seed, RegistrationResult* out) {
-  PdaRegistration registration(parameters);
-  EXPECT_TRUE(registration.setTarget(maps.dense));
-  const Eigen::Isometry3d initial =
-      maps.T_target_source * randomPerturbation(degrees, metres, seed);
-  *out = registration.align(maps.sparse, initial);
-  return poseError(maps.sparse, out->T_target_source, maps.T_target_source).mean_distance;
-}
+using testing_support::alignedError;
+using testing_support::carParkOptions;
+using testing_support::latticeMaps;
 
 TEST(LatticeCase, SparseReturnsLieOnTheDenseLatticeOfTheSameSensor) {
   const SimulatedMaps& maps = latticeMaps();

@@ -7,39 +7,16 @@
 #include <cmath>
 #include <random>
 
-#include "pda_registration/core/error_metrics.hpp"
-#include "pda_registration/core/pda_registration.hpp"
-#include "pda_registration/core/perturbation.hpp"
 #include "pda_registration/core/source_budget.hpp"
 #include "pda_registration/simulation/map_simulation.hpp"
+#include "test_support/simulated_cases.hpp"
 
 namespace pda_registration {
 namespace simulation {
 namespace {
 
-double alignedError(const SimulatedMaps& maps, const RegistrationParameters& parameters,
-                    double degrees, double metres, uint64_t seed, RegistrationResult* out) {
-  PdaRegistration registration(parameters);
-  EXPECT_TRUE(registration.setTarget(maps.dense));
-  const Eigen::Isometry3d initial =
-      maps.T_target_source * randomPerturbation(degrees, metres, seed);
-  *out = registration.align(maps.sparse, initial);
-  return poseError(maps.sparse, out->T_target_source, maps.T_target_source).mean_distance;
-}
-
-// A static 64-beam lidar in a car park re-observed by itself (lattice_registration_test.cpp).
-const SimulatedMaps& latticeMaps() {
-  static const SimulatedMaps maps = [] {
-    MapSimulationOptions options;
-    options.seed = 3;
-    options.scene = SceneKind::kOutdoor;
-    options.dense_sensor = DenseSensor::kLidar64;
-    options.same_pose = true;
-    options.dense_voxel_size = 0.0;
-    return simulateMaps(options);
-  }();
-  return maps;
-}
+using testing_support::alignedError;
+using testing_support::latticeMaps;
 
 // The approach stage aligns a quarter of the source. Taken as every 4th point in storage order,
 // a scan stored firing by firing (all lasers of one azimuth, then the next) gave 8 of 32 rings.

@@ -16,11 +16,15 @@ target_compile_options(pose_covariance_test PRIVATE ${PDA_WARNINGS})
 target_link_libraries(pose_covariance_test
   pda_test_support pda_registration_simulation gtest_main)
 
+# The simulated lidar cases and one perturbed alignment, shared by the registration tests.
+add_library(pda_simulated_cases STATIC test_support/simulated_cases.cpp)
+target_compile_options(pda_simulated_cases PRIVATE ${PDA_WARNINGS})
+target_link_libraries(pda_simulated_cases pda_test_support pda_registration_simulation gtest)
+
 # Registration on the simulated outdoor and same-sensor lattice cases (no ROS needed).
 catkin_add_gtest(lattice_registration_test lattice_registration_test.cpp)
 target_compile_options(lattice_registration_test PRIVATE ${PDA_WARNINGS})
-target_link_libraries(lattice_registration_test
-  pda_test_support pda_registration_simulation gtest_main)
+target_link_libraries(lattice_registration_test pda_simulated_cases gtest_main)
 
 # The ground truth of a warped dense map: the best rigid fit of the warp over the overlap.
 catkin_add_gtest(warp_rigid_fit_test warp_rigid_fit_test.cpp)
@@ -31,5 +35,4 @@ target_link_libraries(warp_rigid_fit_test
 # Reach and verdict of the defaults: the approach subset, the lattice from 10 deg, RGB-D fragments.
 catkin_add_gtest(registration_reach_test registration_reach_test.cpp)
 target_compile_options(registration_reach_test PRIVATE ${PDA_WARNINGS})
-target_link_libraries(registration_reach_test
-  pda_test_support pda_registration_simulation gtest_main)
+target_link_libraries(registration_reach_test pda_simulated_cases gtest_main)

@@ -1,0 +1,29 @@
+#pragma once
+// Simulated cases shared by the registration tests: the lidar car park and its same-sensor
+// lattice, and one alignment from a perturbed ground truth.
+
+#include <cstdint>
+
+#include "pda_registration/core/registration_parameters.hpp"
+#include "pda_registration/core/registration_result.hpp"
+#include "pda_registration/simulation/map_simulation.hpp"
+
+namespace pda_registration {
+namespace testing_support {
+
+/// The car park scanned by lidars only (maps kept whole, as pda_simulate keeps lidar maps).
+simulation::MapSimulationOptions carParkOptions(simulation::DenseSensor dense_sensor,
+                                                bool same_pose);
+
+/// A static 64-beam lidar in a car park: the dense map is four revolutions of it, the sparse map
+/// one more revolution cut to 11 rings: every sparse return lies on the dense map's lattice.
+/// Simulated once per test program.
+const simulation::SimulatedMaps& latticeMaps();
+
+/// Aligns maps.sparse to maps.dense from the ground truth perturbed by `degrees` / `metres`
+/// (seeded); returns eq. 22's error against the ground truth and the result in *out.
+double alignedError(const simulation::SimulatedMaps& maps, const RegistrationParameters& parameters,
+                    double degrees, double metres, uint64_t seed, RegistrationResult* out);
+
+}  // namespace testing_support
+}  // namespace pda_registration
