@@ -1,5 +1,6 @@
 // The M-step solvers minimise the same weighted objective: given the same weights they must land
-// on the same transform, and recover it exactly from noise-free correspondences.
+// on the same transform, and recover it exactly from noise-free correspondences. And the
+// extrapolation of the runs that the solver's steps feed.
 #include <gtest/gtest.h>
 
 #include <limits>
@@ -11,6 +12,7 @@
 #include "pda_registration/core/closed_form_solver.hpp"
 #include "pda_registration/core/gauss_newton_solver.hpp"
 #include "pda_registration/core/pose_covariance.hpp"
+#include "pda_registration/core/run_extrapolation.hpp"
 
 namespace pda_registration {
 namespace {
@@ -126,3 +128,54 @@ TEST(PoseCovariance, PositiveDefiniteWithANoiseTermProportionalToSigmaSquared) {
 
 }  // namespace
 }  // namespace pda_registration
+
+// Aitken extrapolation of the runs (run_extrapolation.hpp) on a linearly converging iteration:
+// each "run" moves the pose a fraction 1 - rho of the way to the solution, as runs do on dense
+// clouds. Extrapolated, it needs a fraction of the runs; an oscillating iteration (steps that
+// turn back) is never extrapolated.
+namespace {
+int runsToConverge(double rho, bool extrapolate, double* final_error) {
+  using namespace pda_registration;
+  Eigen::Isometry3d solution = Eigen::Isometry3d::Identity();
+  solution.linear() = Eigen::AngleAxisd(0.3, Eigen::Vector3d(1, 2, 3).normalized()).matrix();
+  solution.translation() = Eigen::Vector3d(1.0, -2.0, 0.5);
+  RunExtrapolation extrapolation(Point(5.0, 0.0, 0.0), 3.0);
+  Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
+  for (int run = 1; run <= 1000; ++run) {
+    // One run: the remaining motion to the solution, scaled by 1 - rho (about the origin).
+    const Eigen::Isometry3d remaining = solution * T.inverse();
+    const Eigen::AngleAxisd rotation(remaining.linear());
+    Eigen::Isometry3d partial = Eigen::Isometry3d::Identity();
+    partial.linear() = Eigen::AngleAxisd((1.0 - rho) * rotation.angle(), rotation.axis()).matrix();
+    partial.translation() = (1.0 - rho) * remaining.translation();
+    const Eigen::Isometry3d before = T;
+    T = partial * T;
+    if ((T.translation() - before.translation()).norm() < 1e-6) {
+      *final_error = (T.translation() - solution.translation()).norm();
+      return run;
+    }
+    if (extrapolate) T = extrapolation.next(before, T, 1e-4, 1e9);
+  }
+  *final_error = (T.translation() - solution.translation()).norm();
+  return 1000;
+}
+}  // namespace
+
+TEST(RunExtrapolation, CutsTheRunsOfALinearlyConvergingIteration) {
+  double plain_error = 0.0, extrapolated_error = 0.0;
+  const int plain = runsToConverge(0.9, false, &plain_error);
+  const int extrapolated = runsToConverge(0.9, true, &extrapolated_error);
+  EXPECT_GT(plain, 100);
+  EXPECT_LT(extrapolated, plain / 3) << "plain " << plain;
+  EXPECT_LT(extrapolated_error, 1e-4);
+}
+
+TEST(RunExtrapolation, LeavesTurningStepsAlone) {
+  pda_registration::RunExtrapolation extrapolation(pda_registration::Point::Zero(), 1.0);
+  Eigen::Isometry3d a = Eigen::Isometry3d::Identity(), b = a, c = a;
+  b.translation() = Eigen::Vector3d(0.1, 0, 0);
+  c.translation() = Eigen::Vector3d(0.05, 0, 0);  // turned back
+  EXPECT_TRUE(extrapolation.next(a, b, 1e-6, 1e9).isApprox(b));
+  EXPECT_TRUE(extrapolation.next(b, c, 1e-6, 1e9).isApprox(c));
+  EXPECT_EQ(extrapolation.extrapolations(), 0);
+}

@@ -77,7 +77,7 @@ void computeWeightedCorrespondences(const PointList& source, const CandidateSets
   across.resize(n);
   along.resize(n);
   log_u_minus_u.resize(n);
-  const bool gaussian = std::isinf(nu);
+  const bool nu_statistic = buffers->nu_statistic && !std::isinf(nu);
 
 #pragma omp parallel num_threads(std::max(threads, 1))
   {
@@ -103,7 +103,7 @@ void computeWeightedCorrespondences(const PointList& source, const CandidateSets
       for (size_t i = 0; i < count; ++i) {
         w += rho[i];
         mean += rho[i] * y[i];
-        if (!gaussian && posterior[i] > 0.0) {
+        if (nu_statistic && posterior[i] > 0.0) {
           const double u = rho[i] / posterior[i];
           precision_term += posterior[i] * (std::log(u) - u);
         }

@@ -77,6 +77,7 @@ bool runEm(const PointList& source, const SurfaceNormalMap& normal_map,
     state->sigma_squared =
         std::max(initialSigmaSquared(source, candidates, state->T), sigma_squared_floor);
   }
+  workspace->e_step.nu_statistic = p.nu_mode == NuMode::kEstimated;
   *settled = false;
   for (int iteration = 0; iteration < p.max_em_iterations; ++iteration) {
     makeNoiseShapes(workspace->normals, workspace->spread, state->sigma_squared, p,

@@ -37,7 +37,7 @@ struct WeightedCorrespondences {
   std::vector<double> spread_across, spread_along;
   bool sampling = false;  ///< the shapes follow sigma (noise_shapes.hpp): sigma^2 updates differ
   /// mean_j sum_i P(a_i) (log u_i - u_i), u_i = E[w | a_i]: the E-step's statistic for nu's
-  /// update (degrees_of_freedom.hpp); 0 for the Gaussian.
+  /// update (degrees_of_freedom.hpp); only when the buffers ask for it, 0 for the Gaussian.
   double mean_log_u_minus_u = 0.0;
 
   size_t size() const { return source.size(); }
@@ -47,6 +47,7 @@ struct WeightedCorrespondences {
 struct EStepBuffers {
   PointList means;
   std::vector<double> weights, across, along, log_u_minus_u;
+  bool nu_statistic = false;  ///< also compute mean_log_u_minus_u (a log per candidate)
 };
 
 /// Runs the E-step at the current estimate for every source point with candidates, each in its

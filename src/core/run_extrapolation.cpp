@@ -1,0 +1,55 @@
+#include "pda_registration/core/run_extrapolation.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+namespace pda_registration {
+namespace {
+constexpr double kSameDirection = 0.9;  // cosine between successive steps
+constexpr double kMaxRatio = 0.95;      // beyond: too slow a shrink to trust its tail
+constexpr double kMaxFactor = 8.0;      // the extrapolation never exceeds 8 of the last steps
+}  // namespace
+
+RunExtrapolation::RunExtrapolation(const Point& centroid, double length)
+    : centroid_(centroid), length_(length) {}
+
+RunExtrapolation::Step RunExtrapolation::stepBetween(const Eigen::Isometry3d& before,
+                                                     const Eigen::Isometry3d& after) const {
+  const Eigen::AngleAxisd rotation(after.linear() * before.linear().transpose());
+  Step step;
+  step.head<3>() = rotation.angle() * rotation.axis() * length_;
+  step.tail<3>() = after * centroid_ - before * centroid_;
+  return step;
+}
+
+Eigen::Isometry3d RunExtrapolation::next(const Eigen::Isometry3d& before,
+                                         const Eigen::Isometry3d& after, double min_step,
+                                         double max_move) {
+  const Step step = stepBetween(before, after);
+  const double size = step.norm();
+  if (!(size > min_step) || !step.allFinite()) {
+    have_previous_ = false;
+    return after;
+  }
+  if (!have_previous_) {
+    previous_ = step;
+    have_previous_ = true;
+    return after;
+  }
+  const double cosine = step.dot(previous_) / (size * previous_.norm());
+  const double ratio = size / previous_.norm();
+  previous_ = step;
+  if (cosine < kSameDirection || ratio >= kMaxRatio) return after;
+  // The tail rho + rho^2 + ... of the last step, then two fresh steps before the next one.
+  const double factor = std::min({ratio / (1.0 - ratio), kMaxFactor, max_move / size});
+  have_previous_ = false;
+  ++extrapolations_;
+  const Eigen::AngleAxisd rotation(after.linear() * before.linear().transpose());
+  const Point pivot = after * centroid_;
+  Eigen::Isometry3d extra = Eigen::Isometry3d::Identity();
+  extra.linear() = Eigen::AngleAxisd(factor * rotation.angle(), rotation.axis()).toRotationMatrix();
+  extra.translation() = pivot + factor * step.tail<3>() - extra.linear() * pivot;
+  return extra * after;
+}
+
+}  // namespace pda_registration
