@@ -70,6 +70,8 @@ void AlignmentStatus::fill(diagnostic_updater::DiagnosticStatusWrapper& status,
   status.add("index update CPU time [ms]", s.index_update_cpu_ms);
   status.add("index update", s.index_update);
   status.add("index updates", s.index_updates);
+  status.add("index folds", s.index_folds);
+  status.add("index fold time [ms]", s.index_fold_ms);
   status.add("source points received", s.source_points_received);
   status.add("source points used", s.source_points_used);
   status.add("target cropped", s.target_cropped);

@@ -57,6 +57,7 @@ void DenseMapKeeper::put(const sensor_msgs::PointCloud2ConstPtr& cloud) {
     if (front_ < 0) pending_first_ = true;
   }
   queue_.putDense(cloud);  // maps are slow; a replaced pending map needs no counting
+  fold_cancel_ = true;     // after the put: a fold that starts later sees the map waiting
 }
 
 DenseMapKeeper::Borrowed::~Borrowed() {
@@ -104,7 +105,31 @@ void DenseMapKeeper::loop() {
     // Release the message now and hand freed memory back (see the worker loop).
     dense.reset();
     malloc_trim(0);
+    foldLatest();
   }
+}
+
+void DenseMapKeeper::foldLatest() {
+  const std::shared_ptr<const TargetIndex> index = std::move(to_fold_);
+  to_fold_.reset();
+  if (!index || index->trees() <= 1) return;
+  fold_cancel_ = false;
+  if (queue_.denseWaiting()) return;  // the new map first
+  const auto start = std::chrono::steady_clock::now();
+  const double cpu_start = threadCpuMs();
+  if (!index->fold(&fold_cancel_)) return;
+  const double ms =
+      std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+  const double cpu_ms = threadCpuMs() - cpu_start;
+  status_->update([&](AlignmentStatusValues& s) {
+    s.index_fold_ms = ms;
+    ++s.index_folds;
+  });
+  char line[200];
+  std::snprintf(line, sizeof(line),
+                "index of %zu points folded into one tree in %.0f ms (%.0f ms CPU)",
+                index->size(), ms, cpu_ms);
+  log_.info(line);
 }
 
 void DenseMapKeeper::update(const sensor_msgs::PointCloud2ConstPtr& cloud) {
@@ -168,6 +193,7 @@ void DenseMapKeeper::update(const sensor_msgs::PointCloud2ConstPtr& cloud) {
     }
     slot.map_points = slot.registration.targetCloudSize();
     const std::shared_ptr<const TargetIndex> index = slot.registration.target();
+    to_fold_ = index;
     if (index && previous && index->extends(*previous)) {
       how = "extended";
       appended = index->size() - previous->size();

@@ -40,6 +40,9 @@ struct AlignmentStatusValues {
   double index_update_ms = 0.0, index_update_cpu_ms = 0.0;
   std::string index_update;
   size_t index_updates = 0;
+  // Folds of an extended index's trees into one (background, dense_map_keeper.hpp).
+  double index_fold_ms = 0.0;
+  size_t index_folds = 0;
   // Source points of the last alignment: as received, and used (after the budget and filters).
   size_t source_points_received = 0, source_points_used = 0;
 };

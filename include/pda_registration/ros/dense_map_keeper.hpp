@@ -7,9 +7,14 @@
 // (TargetMap::setCloud), and a map re-published unchanged (same 64-bit fingerprint of frame,
 // layout and bytes) is skipped. As the registration source (target_cloud: sparse) a map is only
 // converted.
+//
+// An extended index is several kd-trees and every query descends each; when no map is waiting,
+// the keeper folds the front index's trees into one (TargetIndex::fold, same answers, faster
+// queries), and gives up the fold as soon as a new map arrives.
 
 #include <sensor_msgs/PointCloud2.h>
 
+#include <atomic>
 #include <condition_variable>
 #include <functional>
 #include <memory>
@@ -75,6 +80,8 @@ class DenseMapKeeper {
  private:
   void loop();
   void update(const sensor_msgs::PointCloud2ConstPtr& cloud);
+  /// Folds the trees of the index update() made last, unless a map arrives first.
+  void foldLatest();
   void giveBack(DenseMapSlot* slot);
 
   const bool dense_is_target_;
@@ -91,6 +98,8 @@ class DenseMapKeeper {
   int borrowed_[2] = {0, 0};   // alignments using each slot
   bool pending_first_ = false;  // a map is on its way and none is ready yet
   bool stopped_ = false;
+  std::shared_ptr<const TargetIndex> to_fold_;  // keeper thread only
+  std::atomic<bool> fold_cancel_{false};          // a map arrived: stop folding
   std::thread thread_;
 };
 
