@@ -4,6 +4,7 @@
 
 #include "pda_registration/core/alignment_gate.hpp"
 #include "pda_registration/core/pose_covariance.hpp"
+#include "pda_registration/core/representative_subset.hpp"
 #include "pda_registration/core/source_budget.hpp"
 #include "pda_registration/ros/input_checks.hpp"
 #include "pda_registration/ros/point_cloud_conversion.hpp"
@@ -14,7 +15,19 @@ namespace {
 // How long an alignment waits for the very first dense map to be indexed (a 5M-point map takes a
 // few seconds); later alignments take the newest ready map at once.
 constexpr double kFirstMapTimeout = 30.0;
+// How often the sparse clouds' spacing is measured again (a kd-tree over one cloud: ~3 ms for
+// 30k points); the keeper re-indexes only when it changes by more than a factor of sqrt(2).
+constexpr double kSpacingPeriod = 10.0;
 }  // namespace
+
+void AlignmentJob::reportSpacing(const PointList& sparse, const LiveParameters& live) {
+  const ros::WallTime now = ros::WallTime::now();
+  if (!last_spacing_.isZero() && (now - last_spacing_).toSec() < kSpacingPeriod) return;
+  last_spacing_ = now;
+  // A source voxel filter (applied inside the registration) spaces the points at least that far.
+  c_.keeper->noteSparseSpacing(
+      std::max(sampleSpacing(sparse), live.registration.source_voxel_size));
+}
 
 void AlignmentJob::run(const SparseJob& job, const LiveParameters& live) {
   const NodeSettings& settings = *c_.settings;
@@ -107,12 +120,14 @@ void AlignmentJob::run(const SparseJob& job, const LiveParameters& live) {
   if (!verdict.accepted) {
     c_.log.problem("rejected",
                    "alignment rejected, keeping the last good estimate: " + verdict.reason, false);
+    if (settings.dense_is_target) reportSpacing(sparse.points, live);
     return;
   }
   publish({&cloud, &dense_frame, &result, source_points, want_markers ? &associations : nullptr,
            &live});
   const double latency_ms = (ros::WallTime::now() - job.received).toSec() * 1000.0;
   c_.status->update([&](AlignmentStatusValues& s) { s.last_latency_ms = latency_ms; });
+  if (settings.dense_is_target) reportSpacing(sparse.points, live);
   ROS_DEBUG("aligned in %.0f ms (%d runs, sigma %.4f, inliers %.2f), latency %.0f ms",
             result.time_ms, result.runs, result.sigma, result.inlier_fraction, latency_ms);
 }

@@ -64,6 +64,8 @@ void AlignmentStatus::fill(diagnostic_updater::DiagnosticStatusWrapper& status,
              s.dense_arrival.isZero() ? -1.0 : (ros::WallTime::now() - s.dense_arrival).toSec());
   status.add("dense map publishers", dense_publishers);
   status.add("indexed target points", s.indexed_points);
+  status.add("sparse cloud spacing [cm]", 100.0 * s.sparse_spacing);
+  status.add("dense map subset voxel [cm]", 100.0 * s.dense_subset_voxel);
   status.add("index age [s]",
              s.index_ready.isZero() ? -1.0 : (ros::WallTime::now() - s.index_ready).toSec());
   status.add("index update time [ms]", s.index_update_ms);

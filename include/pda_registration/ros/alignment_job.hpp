@@ -57,8 +57,13 @@ class AlignmentJob {
   /// was the target.
   Eigen::Matrix<double, 6, 6> publishedCovariance(const RegistrationResult& result) const;
 
+  /// Tells the keeper the sparse clouds' sample spacing (for the dense map's subset), measured
+  /// on the first cloud and then every kSpacingPeriod seconds, after the answer is out.
+  void reportSpacing(const PointList& sparse, const LiveParameters& live);
+
   AlignmentJobContext c_;
   PdaRegistration sparse_target_;  // the registration when the sparse cloud is the target
+  ros::WallTime last_spacing_;
 };
 
 }  // namespace pda_registration

@@ -40,6 +40,9 @@ struct AlignmentStatusValues {
   double index_update_ms = 0.0, index_update_cpu_ms = 0.0;
   std::string index_update;
   size_t index_updates = 0;
+  // The sparse clouds' sample spacing, and the voxel of the dense map's indexed subset (0: the
+  // whole map is indexed; core/representative_subset.hpp).
+  double sparse_spacing = 0.0, dense_subset_voxel = 0.0;
   // Folds of an extended index's trees into one (background, dense_map_keeper.hpp).
   double index_fold_ms = 0.0;
   size_t index_folds = 0;
