@@ -1,5 +1,5 @@
 // The index that is updated, not rebuilt: queries answer exactly the k nearest points within the
-// radius (checked against brute force, ties included), an index extended by appended points gives
+// radius (checked against brute force, ties included, with or without hints), an index extended by appended points gives
 // the same candidate sets, normal map and registration result as one rebuilt from scratch, and a
 // 1M-point map that grows by 5 % is updated in about the cost of its new points; an index folded
 // into one tree while it is queried answers the same. Also the per-alignment source budget.
@@ -72,14 +72,23 @@ TEST(TargetIndex, AnswersExactlyTheKNearestWithinRadiusTiesByIndex) {
     }
     std::sort(brute.begin(), brute.end());
     brute.resize(std::min<size_t>(brute.size(), k));
+    // Hints (the last run's answers) change nothing: the right ones, wrong ones, duplicates and
+    // indices beyond the cloud.
+    std::vector<size_t> hints = {points.size() + 3, static_cast<size_t>(q) % points.size()};
+    for (auto it = brute.rbegin(); it != brute.rend(); ++it) hints.push_back(it->second);
+    if (!brute.empty()) hints.push_back(brute.front().second);
     for (const TargetIndex* index : {extended.get(), &rebuilt}) {
-      size_t indices[k];
-      double distances[k];
-      const size_t found = index->nearestWithinRadius(query, k, radius, indices, distances);
-      ASSERT_EQ(found, brute.size()) << "query " << q;
-      for (size_t i = 0; i < found; ++i) {
-        EXPECT_EQ(indices[i], brute[i].second) << "query " << q;
-        EXPECT_EQ(distances[i], brute[i].first) << "query " << q;
+      for (const bool hinted : {false, true}) {
+        size_t indices[k];
+        double distances[k];
+        const size_t found = index->nearestWithinRadius(query, k, radius, indices, distances,
+                                                        hinted ? hints.data() : nullptr,
+                                                        hinted ? hints.size() : 0);
+        ASSERT_EQ(found, brute.size()) << "query " << q;
+        for (size_t i = 0; i < found; ++i) {
+          EXPECT_EQ(indices[i], brute[i].second) << "query " << q;
+          EXPECT_EQ(distances[i], brute[i].first) << "query " << q;
+        }
       }
     }
   }

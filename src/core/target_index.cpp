@@ -43,14 +43,20 @@ class NearestWithinRadius {
   void offer(double distance, size_t index) {
     if (count_ == capacity_) {
       const double worst = distances_[capacity_ - 1];
-      if (distance > worst || (distance == worst && index > indices_[capacity_ - 1])) return;
+      if (distance > worst || (distance == worst && index >= indices_[capacity_ - 1])) return;
     } else if (!(distance < squared_radius_)) {
       return;
     }
+    // The insertion point; a point already held (offered as a hint, then met in the tree) is
+    // exactly equal to the entry before it.
+    size_t at = count_ < capacity_ ? count_ : capacity_ - 1;
+    while (at > 0 && (distances_[at - 1] > distance ||
+                      (distances_[at - 1] == distance && indices_[at - 1] > index))) {
+      --at;
+    }
+    if (at > 0 && distances_[at - 1] == distance && indices_[at - 1] == index) return;
     size_t i = count_ < capacity_ ? count_ : capacity_ - 1;
-    for (; i > 0 && (distances_[i - 1] > distance ||
-                     (distances_[i - 1] == distance && indices_[i - 1] > index));
-         --i) {
+    for (; i > at; --i) {
       distances_[i] = distances_[i - 1];
       indices_[i] = indices_[i - 1];
     }
@@ -269,9 +275,13 @@ bool TargetIndex::fold(const std::atomic<bool>* cancel) const {
 }
 
 size_t TargetIndex::nearestWithinRadius(const Point& query, int k, double radius, size_t* indices,
-                                        double* squared_distances) const {
+                                        double* squared_distances, const size_t* hints,
+                                        size_t n_hints) const {
   if (points_.empty() || k <= 0 || !(radius > 0.0)) return 0;
   NearestWithinRadius result(static_cast<size_t>(k), radius * radius, indices, squared_distances);
+  for (size_t h = 0; h < n_hints; ++h) {
+    if (hints[h] < points_.size()) result.offer(squaredDistance(query, points_[hints[h]]), hints[h]);
+  }
   if (const Tree* folded = folded_.load(std::memory_order_acquire)) {
     folded->search(points_, query, &result);
   } else {

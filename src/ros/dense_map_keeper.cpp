@@ -151,6 +151,26 @@ void DenseMapKeeper::foldLatest() {
   log_.info(line);
 }
 
+bool DenseMapKeeper::keptWhole(DenseMapSlot* front, const PointList& map, double sparse_spacing) {
+  // The subset fields are the keeper's own: alignments borrowing the front never read them.
+  if (front->subset && front->subset->thinned()) return false;
+  std::unique_ptr<RepresentativeSubset> subset;
+  if (sparse_spacing > 0.0) {
+    subset = std::make_unique<RepresentativeSubset>(sparse_spacing);
+    subset->update(map);
+    if (subset->thinned()) return false;
+  }
+  front->subset = std::move(subset);
+  front->sparse_spacing = sparse_spacing;
+  status_->update([&](AlignmentStatusValues& s) { s.sparse_spacing = sparse_spacing; });
+  char line[200];
+  std::snprintf(line, sizeof(line),
+                "dense map kept whole: not much finer than the sparse clouds' spacing %.1f cm",
+                100.0 * sparse_spacing);
+  log_.info(line);
+  return true;
+}
+
 void DenseMapKeeper::update(const sensor_msgs::PointCloud2ConstPtr& cloud) {
   const std::string frame_problem = frameProblem(*cloud, expected_frame_, "dense");
   if (!frame_problem.empty()) {
@@ -161,12 +181,14 @@ void DenseMapKeeper::update(const sensor_msgs::PointCloud2ConstPtr& cloud) {
   const LiveParameters live = parameters_();
   const double sparse_spacing =
       dense_is_target_ && live.dense_subset ? sparse_spacing_.load() : 0.0;
-  int back;
+  int back, front;
+  bool same_map;
   {
     std::unique_lock<std::mutex> lock(mutex_);
     if (dense_is_target_) latest_ = cloud;
-    if (front_ >= 0 && slots_[front_].fingerprint == fingerprint &&
-        slots_[front_].sparse_spacing == sparse_spacing) {
+    front = front_;
+    same_map = front_ >= 0 && slots_[front_].fingerprint == fingerprint;
+    if (same_map && slots_[front_].sparse_spacing == sparse_spacing) {
       lock.unlock();
       status_->update([](AlignmentStatusValues& s) {
         ++s.dense_unchanged;
@@ -187,6 +209,9 @@ void DenseMapKeeper::update(const sensor_msgs::PointCloud2ConstPtr& cloud) {
   }
   const double convert_ms =
       std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+  if (same_map && dense_is_target_ && keptWhole(&slots_[front], converted.points, sparse_spacing)) {
+    return;
+  }
   {
     // An alignment that began before the last swap may still use the back slot: let it finish.
     std::unique_lock<std::mutex> lock(mutex_);

@@ -64,8 +64,12 @@ class TargetIndex {
 
   /// Up to k nearest points strictly within `radius` of `query`, nearest first. Writes indices
   /// and squared distances into the arrays (capacity k) and returns how many were found.
+  /// `hints` (n_hints point indices, e.g. this query's answer at a nearby pose) only speed the
+  /// search up: offered first, they tighten its bound; the answer is the same for any hints
+  /// (indices beyond the index are ignored).
   size_t nearestWithinRadius(const Point& query, int k, double radius, size_t* indices,
-                             double* squared_distances) const;
+                             double* squared_distances, const size_t* hints = nullptr,
+                             size_t n_hints = 0) const;
 
  private:
   struct Tree;

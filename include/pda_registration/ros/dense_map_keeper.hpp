@@ -98,6 +98,9 @@ class DenseMapKeeper {
  private:
   void loop();
   void update(const sensor_msgs::PointCloud2ConstPtr& cloud);
+  /// The front's map again, with a new sparse spacing: true (nothing to re-index) when the map
+  /// stays whole, as the front has it.
+  bool keptWhole(DenseMapSlot* front, const PointList& map, double sparse_spacing);
   /// Folds the trees of the index update() made last, unless a map arrives first.
   void foldLatest();
   void giveBack(DenseMapSlot* slot);
