@@ -76,6 +76,7 @@ void AlignmentStatus::fill(diagnostic_updater::DiagnosticStatusWrapper& status,
   status.add("index fold time [ms]", s.index_fold_ms);
   status.add("source points received", s.source_points_received);
   status.add("source points used", s.source_points_used);
+  status.add("threads used", s.threads_used);
   status.add("target cropped", s.target_cropped);
   status.add("roles swapped", s.roles_swapped);
   status.add("resident memory [MB]", processMemory().resident_mb);

@@ -48,6 +48,7 @@ struct AlignmentStatusValues {
   size_t index_folds = 0;
   // Source points of the last alignment: as received, and used (after the budget and filters).
   size_t source_points_received = 0, source_points_used = 0;
+  int threads_used = 0;  ///< by the last alignment: at most `threads`, no more than idle cores
 };
 
 class AlignmentStatus {
