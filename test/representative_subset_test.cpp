@@ -83,6 +83,19 @@ TEST(RepresentativeSubset, MapsNotMuchFinerThanTheVoxelStayWhole) {
   EXPECT_FALSE(subset.thinned());
   EXPECT_FALSE(subset.update(grid(0.005, 0.5, false)));
   EXPECT_TRUE(subset.thinned());
+  // A growing map whose first part is sparse: whole until, doubled, it is much finer; then
+  // thinned afresh (not a continuation: its index is rebuilt once).
+  PointList growing = grid(0.04, 2.0, false);
+  RepresentativeSubset judged(0.05);
+  EXPECT_FALSE(judged.update(growing));
+  EXPECT_FALSE(judged.thinned());
+  const PointList fine = grid(0.005, 1.0, false);
+  growing.insert(growing.end(), fine.begin(), fine.begin() + 2000);
+  EXPECT_TRUE(judged.update(growing));  // grown by less than double: the decision holds
+  EXPECT_FALSE(judged.thinned());
+  growing.insert(growing.end(), fine.begin() + 2000, fine.end());
+  EXPECT_FALSE(judged.update(growing));
+  EXPECT_TRUE(judged.thinned());
   RepresentativeSubset off(0.0);  // no voxel: whole
   off.update(grid(0.005, 0.5, false));
   EXPECT_FALSE(off.thinned());

@@ -55,8 +55,19 @@ double sampleSpacing(const PointList& cloud, size_t samples) {
 }
 
 bool RepresentativeSubset::update(const PointList& map) {
-  const bool continued = map_size_ > 0 && map.size() >= map_size_ &&
-                         hashPoints(map, 0, map_size_, kHashStart) == map_hash_;
+  bool continued = map_size_ > 0 && map.size() >= map_size_ &&
+                   hashPoints(map, 0, map_size_, kHashStart) == map_hash_;
+  // A map kept whole is judged again each time it has doubled: the first part of a growing map
+  // (a few scan lines) can be sparser than the whole. Thinned from then on, it starts afresh.
+  if (continued && !thinned_ && voxel_size_ > 0.0 && map.size() >= 2 * decided_size_) {
+    RepresentativeSubset again(voxel_size_, min_redundancy_);
+    again.update(map);
+    if (again.thinned()) {
+      *this = std::move(again);
+      return false;
+    }
+    decided_size_ = map.size();
+  }
   if (!continued) {
     points_.clear();
     voxels_.clear();
@@ -69,6 +80,7 @@ bool RepresentativeSubset::update(const PointList& map) {
     redundancy_ = points_.empty() ? 1.0
                                   : static_cast<double>(map.size()) /
                                         static_cast<double>(points_.size());
+    decided_size_ = map.size();
     if (redundancy_ < min_redundancy_) {
       // Whole: only the hash is kept, to recognise the map's continuations.
       thinned_ = false;

@@ -37,7 +37,8 @@ class RepresentativeSubset {
   /// Takes the whole map. When it starts with the map taken last (same points, same order), only
   /// the appended points are examined and points() grows by those that open a new voxel;
   /// otherwise the subset is made afresh and the decision taken again. Returns true in the
-  /// first case.
+  /// first case. A map kept whole is judged again whenever it has doubled since (its first part
+  /// may be sparser than the whole); when that thins it, the subset is new (returns false).
   bool update(const PointList& map);
 
   double voxelSize() const { return voxel_size_; }
@@ -53,6 +54,7 @@ class RepresentativeSubset {
   double voxel_size_, min_redundancy_;
   bool thinned_ = false;
   double redundancy_ = 1.0;
+  size_t decided_size_ = 0;  // map size at the last decision
   PointList points_;
   std::unordered_set<uint64_t> voxels_;
   size_t map_size_ = 0;     // points of the map taken last
