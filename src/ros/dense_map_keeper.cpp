@@ -132,11 +132,15 @@ void DenseMapKeeper::foldLatest() {
   const std::shared_ptr<const TargetIndex> index = std::move(to_fold_);
   to_fold_.reset();
   if (!index || index->trees() <= 1) return;
+  // Two trees: the new map first (its update adds a third). More: every query descends each, and
+  // on a busy machine a fold at nice +10 outlasts the map period, so cancelling it would let the
+  // trees pile up: the fold goes first and the waiting map is indexed right after.
+  const bool yield_to_maps = index->trees() <= 2;
   fold_cancel_ = false;
-  if (queue_.denseWaiting()) return;  // the new map first
+  if (yield_to_maps && queue_.denseWaiting()) return;
   const auto start = std::chrono::steady_clock::now();
   const double cpu_start = threadCpuMs();
-  if (!index->fold(&fold_cancel_)) return;
+  if (!index->fold(yield_to_maps ? &fold_cancel_ : nullptr)) return;
   const double ms =
       std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
   const double cpu_ms = threadCpuMs() - cpu_start;

@@ -13,9 +13,9 @@
 // measures and reports (noteSparseSpacing); the latest map is kept so that it can be indexed
 // again when that spacing first becomes known or changes.
 //
-// An extended index is several kd-trees and every query descends each; when no map is waiting,
-// the keeper folds the front index's trees into one (TargetIndex::fold, same answers, faster
-// queries), and gives up the fold as soon as a new map arrives.
+// An extended index is several kd-trees and every query descends each; after each update the
+// keeper folds the front index's trees into one (TargetIndex::fold, same answers, faster
+// queries). Of two trees the fold gives way to a new map; of more, the new map waits for it.
 
 #include <sensor_msgs/PointCloud2.h>
 
