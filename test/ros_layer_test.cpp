@@ -286,7 +286,7 @@ TEST(InvertedPoseCovariance, MatchesNumericPropagation) {
 TEST(IdleCores, AnotherProcessKeepingACoreBusyLeavesOneFewer) {
   const double cores = static_cast<double>(sysconf(_SC_NPROCESSORS_ONLN));
   IdleCores idle;
-  EXPECT_EQ(idle.sample(), cores);  // no window yet: every core
+  EXPECT_EQ(idle.sample(), cores);  // no full window yet: every core
   EXPECT_EQ(idle.threadsFor(1), 1);
   EXPECT_EQ(idle.threadsFor(0), 1);
   // A child process spinning for the whole window is another process's work: at least ~one core

@@ -13,6 +13,8 @@ namespace pda_registration {
 
 class IdleCores {
  public:
+  /// Starts the first window now (the nodelet: at start-up, well before its first alignment).
+  IdleCores() { sample(); }
   /// Cores not busy with other processes' work, averaged since the last sample that started a
   /// new window; windows shorter than `min_window` seconds keep the last value. Before the first
   /// full window (or where /proc is unreadable) this is the number of cores.
