@@ -2,6 +2,8 @@
 // voxel (a growing map's subset extended equals the whole map's), thinning only maps much finer
 // than the voxel, and the factory map thinned to its scan's spacing still registering within
 // 2 mm of the ground truth.
+#include "pda_registration/core/representative_subset.hpp"
+
 #include <gtest/gtest.h>
 
 #include <set>
@@ -9,7 +11,6 @@
 #include "pda_registration/core/error_metrics.hpp"
 #include "pda_registration/core/pda_registration.hpp"
 #include "pda_registration/core/perturbation.hpp"
-#include "pda_registration/core/representative_subset.hpp"
 #include "pda_registration/core/voxel_cell.hpp"
 #include "test_support/shared_data.hpp"
 

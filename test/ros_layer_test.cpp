@@ -3,16 +3,15 @@
 // acceptance gate, covariance propagation through inversion, and the idle-core count that caps
 // the alignment's threads.
 #include <gtest/gtest.h>
+#include <signal.h>
+#include <sys/wait.h>
+#include <unistd.h>
 
 #include <chrono>
 #include <cmath>
 #include <cstring>
 #include <limits>
 #include <thread>
-
-#include <signal.h>
-#include <sys/wait.h>
-#include <unistd.h>
 
 #include "pda_registration/core/alignment_gate.hpp"
 #include "pda_registration/core/pose_covariance.hpp"
@@ -307,7 +306,8 @@ TEST(IdleCores, AnotherProcessKeepingACoreBusyLeavesOneFewer) {
   waitpid(child, nullptr, 0);
   EXPECT_GE(during, 0.0);
   EXPECT_LE(during, cores - 0.8);
-  EXPECT_LE(idle.threadsFor(static_cast<int>(cores), 1e9), std::max(1, static_cast<int>(cores) - 1));
+  EXPECT_LE(idle.threadsFor(static_cast<int>(cores), 1e9),
+            std::max(1, static_cast<int>(cores) - 1));
 }
 
 }  // namespace

@@ -39,9 +39,8 @@ double sampleSpacing(const PointList& cloud, size_t samples) {
   std::vector<double> spacing;
   const size_t step = std::max<size_t>(1, cloud.size() / samples);
   for (size_t i = 0; i < cloud.size(); i += step) {
-    const size_t found = index.nearestWithinRadius(cloud[i], kNearest,
-                                                   std::numeric_limits<double>::infinity(),
-                                                   indices, squared);
+    const size_t found = index.nearestWithinRadius(
+        cloud[i], kNearest, std::numeric_limits<double>::infinity(), indices, squared);
     for (size_t n = 0; n < found; ++n) {
       if (squared[n] > 0.0) {
         spacing.push_back(std::sqrt(squared[n]));
@@ -77,9 +76,9 @@ bool RepresentativeSubset::update(const PointList& map) {
   }
   if (thinned_) add(map, map_size_);
   if (!continued && thinned_) {
-    redundancy_ = points_.empty() ? 1.0
-                                  : static_cast<double>(map.size()) /
-                                        static_cast<double>(points_.size());
+    redundancy_ = points_.empty()
+                      ? 1.0
+                      : static_cast<double>(map.size()) / static_cast<double>(points_.size());
     decided_size_ = map.size();
     if (redundancy_ < min_redundancy_) {
       // Whole: only the hash is kept, to recognise the map's continuations.

@@ -280,7 +280,8 @@ size_t TargetIndex::nearestWithinRadius(const Point& query, int k, double radius
   if (points_.empty() || k <= 0 || !(radius > 0.0)) return 0;
   NearestWithinRadius result(static_cast<size_t>(k), radius * radius, indices, squared_distances);
   for (size_t h = 0; h < n_hints; ++h) {
-    if (hints[h] < points_.size()) result.offer(squaredDistance(query, points_[hints[h]]), hints[h]);
+    if (hints[h] < points_.size())
+      result.offer(squaredDistance(query, points_[hints[h]]), hints[h]);
   }
   if (const Tree* folded = folded_.load(std::memory_order_acquire)) {
     folded->search(points_, query, &result);

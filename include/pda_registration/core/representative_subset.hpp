@@ -30,8 +30,7 @@ class RepresentativeSubset {
   /// A new map is thinned to the first point of each `voxel_size` voxel when it holds at least
   /// `min_redundancy` points per occupied voxel, and kept whole otherwise; a map that continues
   /// the last one keeps that decision (so its index can be extended).
-  explicit RepresentativeSubset(double voxel_size,
-                                double min_redundancy = kMuchFinerRedundancy)
+  explicit RepresentativeSubset(double voxel_size, double min_redundancy = kMuchFinerRedundancy)
       : voxel_size_(voxel_size), min_redundancy_(min_redundancy) {}
 
   /// Takes the whole map. When it starts with the map taken last (same points, same order), only
@@ -57,8 +56,8 @@ class RepresentativeSubset {
   size_t decided_size_ = 0;  // map size at the last decision
   PointList points_;
   std::unordered_set<uint64_t> voxels_;
-  size_t map_size_ = 0;     // points of the map taken last
-  uint64_t map_hash_ = 0;   // of those points' bytes (FNV-1a)
+  size_t map_size_ = 0;    // points of the map taken last
+  uint64_t map_hash_ = 0;  // of those points' bytes (FNV-1a)
 };
 
 }  // namespace pda_registration

@@ -80,7 +80,7 @@ class TargetIndex {
   mutable std::mutex fold_mutex_;
   mutable std::shared_ptr<const Tree> folded_tree_;
   mutable std::atomic<const Tree*> folded_{nullptr};
-  uint64_t lineage_ = 0;      // shared by an index and those extended from it
+  uint64_t lineage_ = 0;  // shared by an index and those extended from it
   size_t last_indexed_ = 0;
 };
 
