@@ -14,6 +14,7 @@ add_library(pda_registration_ros
   src/ros/association_markers.cpp
   src/ros/dense_map_keeper.cpp
   src/ros/edge_broadcaster.cpp
+  src/ros/idle_cores.cpp
   src/ros/initial_transform.cpp
   src/ros/live_parameters.cpp
   src/ros/map_alignment_intake.cpp

@@ -1,14 +1,15 @@
 // The index that is updated, not rebuilt: queries answer exactly the k nearest points within the
-// radius (checked against brute force, ties included), an index extended by appended points gives
+// radius (checked against brute force, ties included, with or without hints), an index extended by appended points gives
 // the same candidate sets, normal map and registration result as one rebuilt from scratch, and a
-// 1M-point map that grows by 5 % is updated in about the cost of its new points. Also the
-// per-alignment source budget.
+// 1M-point map that grows by 5 % is updated in about the cost of its new points; an index folded
+// into one tree while it is queried answers the same. Also the per-alignment source budget.
 #include <gtest/gtest.h>
 
 #include <algorithm>
 #include <chrono>
 #include <limits>
 #include <random>
+#include <thread>
 
 #include "pda_registration/core/candidate_sets.hpp"
 #include "pda_registration/core/pda_registration.hpp"
@@ -71,14 +72,23 @@ TEST(TargetIndex, AnswersExactlyTheKNearestWithinRadiusTiesByIndex) {
     }
     std::sort(brute.begin(), brute.end());
     brute.resize(std::min<size_t>(brute.size(), k));
+    // Hints (the last run's answers) change nothing: the right ones, wrong ones, duplicates and
+    // indices beyond the cloud.
+    std::vector<size_t> hints = {points.size() + 3, static_cast<size_t>(q) % points.size()};
+    for (auto it = brute.rbegin(); it != brute.rend(); ++it) hints.push_back(it->second);
+    if (!brute.empty()) hints.push_back(brute.front().second);
     for (const TargetIndex* index : {extended.get(), &rebuilt}) {
-      size_t indices[k];
-      double distances[k];
-      const size_t found = index->nearestWithinRadius(query, k, radius, indices, distances);
-      ASSERT_EQ(found, brute.size()) << "query " << q;
-      for (size_t i = 0; i < found; ++i) {
-        EXPECT_EQ(indices[i], brute[i].second) << "query " << q;
-        EXPECT_EQ(distances[i], brute[i].first) << "query " << q;
+      for (const bool hinted : {false, true}) {
+        size_t indices[k];
+        double distances[k];
+        const size_t found = index->nearestWithinRadius(query, k, radius, indices, distances,
+                                                        hinted ? hints.data() : nullptr,
+                                                        hinted ? hints.size() : 0);
+        ASSERT_EQ(found, brute.size()) << "query " << q;
+        for (size_t i = 0; i < found; ++i) {
+          EXPECT_EQ(indices[i], brute[i].second) << "query " << q;
+          EXPECT_EQ(distances[i], brute[i].first) << "query " << q;
+        }
       }
     }
   }
@@ -115,6 +125,44 @@ TEST(TargetIndex, ExtendedEqualsRebuiltOnARealGrowingMap) {
   EXPECT_EQ(normals.voxelsWithNormal(), rebuilt_normals.voxelsWithNormal());
   for (size_t i = 0; i < map.size(); i += 97) {
     ASSERT_EQ(normals.normalAt(map[i]), rebuilt_normals.normalAt(map[i])) << i;
+  }
+}
+
+TEST(TargetIndex, FoldedWhileQueriedAnswersTheSameAndIsExtendedFromOneTree) {
+  testing_support::SharedCase factory;
+  std::string error;
+  ASSERT_TRUE(testing_support::loadSharedCase("factory_p64", &factory, &error)) << error;
+  const PointList& map = factory.target;
+  std::shared_ptr<const TargetIndex> index;
+  for (int step = 1; step <= 7; ++step) {
+    index = TargetIndex::extended(
+        index, PointList(map.begin(), map.begin() + static_cast<long>(map.size() * step / 10)));
+  }
+  ASSERT_EQ(index->trees(), 3u);  // 7 steps: trees of 4, 2 and 1 steps (binary counter)
+  const Eigen::Isometry3d T = factory.T_target_source * randomPerturbation(3.0, 0.15, 5);
+  const CandidateSets before = findCandidateSets(*index, factory.source, T, 5, 1.0, 1);
+  // A cancelled fold changes nothing.
+  const std::atomic<bool> cancel{true};
+  EXPECT_FALSE(index->fold(&cancel));
+  EXPECT_EQ(index->trees(), 3u);
+  // Queries go on while another thread folds: the same answers before, during and after.
+  std::thread folder([&] { EXPECT_TRUE(index->fold()); });
+  for (int i = 0; i < 3; ++i) {
+    expectSameCandidates(findCandidateSets(*index, factory.source, T, 5, 1.0, 2), before);
+  }
+  folder.join();
+  EXPECT_EQ(index->trees(), 1u);
+  EXPECT_FALSE(index->fold());  // once
+  expectSameCandidates(findCandidateSets(*index, factory.source, T, 5, 1.0, 2), before);
+  // Extended from the fold: its one tree plus the new points' tree, answering like a rebuild.
+  const auto grown = TargetIndex::extended(index, map);
+  EXPECT_EQ(grown->trees(), 2u);
+  EXPECT_EQ(grown->pointsLastIndexed(), map.size() - index->size());
+  EXPECT_TRUE(grown->extends(*index));
+  const TargetIndex rebuilt(map);
+  for (const double radius : {1.0, 0.25}) {
+    expectSameCandidates(findCandidateSets(*grown, factory.source, T, 5, radius, 2),
+                         findCandidateSets(rebuilt, factory.source, T, 5, radius, 1));
   }
 }
 

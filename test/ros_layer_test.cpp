@@ -1,8 +1,13 @@
 // The ROS layer's pure parts, without a roscore: PointCloud2 conversion of good and broken
 // messages, the ~initial_transform list, association markers, the newest-input mailbox, the
-// acceptance gate and covariance propagation through inversion.
+// acceptance gate, covariance propagation through inversion, and the idle-core count that caps
+// the alignment's threads.
 #include <gtest/gtest.h>
+#include <signal.h>
+#include <sys/wait.h>
+#include <unistd.h>
 
+#include <chrono>
 #include <cmath>
 #include <cstring>
 #include <limits>
@@ -12,6 +17,7 @@
 #include "pda_registration/core/pose_covariance.hpp"
 #include "pda_registration/core/pose_jacobian.hpp"
 #include "pda_registration/ros/association_markers.hpp"
+#include "pda_registration/ros/idle_cores.hpp"
 #include "pda_registration/ros/initial_transform.hpp"
 #include "pda_registration/ros/latest_input_queue.hpp"
 #include "pda_registration/ros/point_cloud_conversion.hpp"
@@ -274,6 +280,34 @@ TEST(InvertedPoseCovariance, MatchesNumericPropagation) {
   // Inverting twice gives the original back.
   EXPECT_TRUE(invertedPoseCovariance(T.inverse(), invertedPoseCovariance(T, covariance))
                   .isApprox(covariance, 1e-9));
+}
+
+TEST(IdleCores, AnotherProcessKeepingACoreBusyLeavesOneFewer) {
+  const double cores = static_cast<double>(sysconf(_SC_NPROCESSORS_ONLN));
+  IdleCores idle;
+  EXPECT_EQ(idle.sample(), cores);  // no full window yet: every core
+  EXPECT_EQ(idle.threadsFor(1), 1);
+  EXPECT_EQ(idle.threadsFor(0), 1);
+  // A child process spinning for the whole window is another process's work: at least ~one core
+  // fewer is idle, whatever else the machine runs. (This process's own threads never count.)
+  const pid_t child = fork();
+  ASSERT_GE(child, 0);
+  if (child == 0) {
+    volatile uint64_t spin = 0;
+    const auto end = std::chrono::steady_clock::now() + std::chrono::milliseconds(2500);
+    while (std::chrono::steady_clock::now() < end) spin = spin + 1;
+    _exit(0);
+  }
+  std::this_thread::sleep_for(std::chrono::milliseconds(100));
+  idle.sample(0.0);  // starts the window with the child running
+  std::this_thread::sleep_for(std::chrono::milliseconds(1500));
+  const double during = idle.sample(1.0);
+  kill(child, SIGKILL);
+  waitpid(child, nullptr, 0);
+  EXPECT_GE(during, 0.0);
+  EXPECT_LE(during, cores - 0.8);
+  EXPECT_LE(idle.threadsFor(static_cast<int>(cores), 1e9),
+            std::max(1, static_cast<int>(cores) - 1));
 }
 
 }  // namespace

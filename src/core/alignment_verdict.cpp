@@ -8,7 +8,7 @@ bool residualsSpanTheSearch(const RegistrationParameters& p, double sigma) {
   return p.sigma_mode == SigmaMode::kEstimated && 6.0 * sigma >= p.radius;
 }
 
-void judgeAlignment(const RegistrationParameters& p, bool came_to_rest,
+void judgeConvergence(const RegistrationParameters& p, bool came_to_rest,
                     const Increment& last_run_step, RegistrationResult* result) {
   RegistrationResult& r = *result;
   std::ostringstream reason;

@@ -3,6 +3,9 @@
 #include <algorithm>
 
 namespace pda_registration {
+namespace {
+constexpr size_t kMaxHints = 64;  // k beyond this (the .cfg allows 50) searches without hints
+}  // namespace
 
 size_t CandidateSets::sourcePointsWithCandidates() const {
   size_t count = 0;
@@ -28,6 +31,10 @@ void findCandidateSets(const TargetIndex& target, const PointList& source,
   std::vector<size_t>& slots = buffers->slots;
   std::vector<double>& squared_distances = buffers->squared_distances;
   std::vector<size_t>& found = buffers->found;
+  // The last call's answers for the same number of points and k are, run after run of one
+  // alignment, the answers at a slightly different pose: offered first, they bound the search
+  // from the start (any hints give the same answer; unrelated ones only cost k distances).
+  const bool hinted = found.size() == n && slots.size() == n * capacity && capacity <= kMaxHints;
   slots.resize(n * capacity);
   squared_distances.resize(n * capacity);
   found.resize(n);
@@ -35,8 +42,11 @@ void findCandidateSets(const TargetIndex& target, const PointList& source,
 #pragma omp parallel for schedule(dynamic, 256) num_threads(std::max(threads, 1))
   for (long long j = 0; j < static_cast<long long>(n); ++j) {
     const Point query = T_target_source * source[j];
+    size_t hints[kMaxHints];
+    const size_t n_hints = hinted ? std::min(found[j], capacity) : 0;
+    std::copy_n(&slots[j * capacity], n_hints, hints);
     found[j] = target.nearestWithinRadius(query, k, radius, &slots[j * capacity],
-                                          &squared_distances[j * capacity]);
+                                          &squared_distances[j * capacity], hints, n_hints);
   }
 
   sets->offsets.resize(n + 1);

@@ -264,7 +264,7 @@ RegistrationResult PdaRegistration::alignUnchecked(const PointList& source_input
     // would have reached the truth.)
     if (stage == Stage::kApproach && stage_done &&
         residualsSpanTheSearch(p, std::sqrt(state.sigma_squared))) {
-      result.converged = true;  // at rest: judgeAlignment says what it is
+      result.converged = true;  // at rest: judgeConvergence says what it is
       break;
     }
     if (stage != Stage::kRefine) {
@@ -291,7 +291,7 @@ RegistrationResult PdaRegistration::alignUnchecked(const PointList& source_input
   }
   fillFinalStatistics(source, *normal_map, p, state, &workspace_, &result, associations);
 
-  judgeAlignment(p, result.converged, last_run_step, &result);
+  judgeConvergence(p, result.converged, last_run_step, &result);
   return result;
 }
 

@@ -60,6 +60,34 @@ void SurfaceNormalMap::add(const PointList& points, size_t from) {
   std::sort(touched.begin(), touched.end());
   touched.erase(std::unique(touched.begin(), touched.end()), touched.end());
   refit(0, std::move(touched));
+  rebuildLookup();
+}
+
+namespace {
+// Fibonacci hashing: the top bits of key * 2^64 / golden ratio.
+size_t slotOf(uint64_t key, int shift) {
+  return static_cast<size_t>((key * 0x9E3779B97F4A7C15ull) >> shift);
+}
+}  // namespace
+
+void SurfaceNormalMap::rebuildLookup() {
+  lookup_.resize(levels_.size());
+  for (size_t l = 0; l < levels_.size(); ++l) {
+    const auto& normals = levels_[l].normals;
+    FlatLevel& flat = lookup_[l];
+    int bits = 4;  // at most half full
+    while ((size_t{1} << bits) < 2 * normals.size()) ++bits;
+    flat.shift = 64 - bits;
+    flat.keys.assign(size_t{1} << bits, 0);
+    flat.normals.resize(size_t{1} << bits);
+    const size_t mask = (size_t{1} << bits) - 1;
+    for (const auto& entry : normals) {
+      size_t slot = slotOf(entry.first, flat.shift);
+      while (flat.keys[slot] != 0) slot = (slot + 1) & mask;
+      flat.keys[slot] = entry.first + 1;
+      flat.normals[slot] = entry.second;
+    }
+  }
 }
 
 void SurfaceNormalMap::refit(int level, std::vector<uint64_t> keys) {
@@ -97,9 +125,9 @@ void SurfaceNormalMap::refit(int level, std::vector<uint64_t> keys) {
         const auto it = here.moments.find(voxelCellKey(c));
         if (it == here.moments.end() || !(it->second.cell == c)) continue;
         const Moments& m = it->second;
-        const Eigen::Vector3d shift = Eigen::Vector3d(c.x - 2 * parent.x, c.y - 2 * parent.y,
-                                                      c.z - 2 * parent.z) *
-                                      here.voxel_size;
+        const Eigen::Vector3d shift =
+            Eigen::Vector3d(c.x - 2 * parent.x, c.y - 2 * parent.y, c.z - 2 * parent.z) *
+            here.voxel_size;
         merged.count += m.count;
         merged.sum += m.sum + m.count * shift;
         merged.outer += m.outer + m.sum * shift.transpose() + shift * m.sum.transpose() +
@@ -124,11 +152,23 @@ size_t SurfaceNormalMap::voxelsWithNormal() const {
 }
 
 Eigen::Vector3d SurfaceNormalMap::normalAt(const Point& p) const {
-  for (const Level& level : levels_) {
-    const double inverse_size = 1.0 / level.voxel_size;
-    const Cell c = voxelCellOf(p, inverse_size);
-    const auto it = level.normals.find(voxelCellKey(c));
-    if (it != level.normals.end()) return it->second.cast<double>();
+  if (lookup_.empty()) return Eigen::Vector3d::Zero();
+  // The cell of p on each level, as voxelCellOf(p, 1 / level size) gives it: the levels' sizes
+  // double exactly, so p / size halves exactly, and a cast with a correction is floor() without
+  // the libm call (18 of them a lookup were a third of its time).
+  const auto cellFloor = [](double v) {
+    const auto i = static_cast<int64_t>(v);
+    return i - (v < static_cast<double>(i) ? 1 : 0);
+  };
+  Point scaled = p * (1.0 / levels_[0].voxel_size);
+  for (size_t l = 0; l < lookup_.size(); ++l, scaled *= 0.5) {
+    const FlatLevel& flat = lookup_[l];
+    const uint64_t key =
+        voxelCellKey({cellFloor(scaled.x()), cellFloor(scaled.y()), cellFloor(scaled.z())});
+    const size_t mask = flat.keys.size() - 1;
+    for (size_t slot = slotOf(key, flat.shift); flat.keys[slot] != 0; slot = (slot + 1) & mask) {
+      if (flat.keys[slot] == key + 1) return flat.normals[slot].cast<double>();
+    }
   }
   return Eigen::Vector3d::Zero();
 }

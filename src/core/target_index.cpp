@@ -11,6 +11,10 @@ namespace pda_registration {
 namespace {
 
 constexpr uint32_t kLeafSize = 16;
+// A build checks for cancellation at the nodes of these top levels (up to 2^10 checks).
+constexpr int kCancelCheckDepth = 10;
+
+struct Cancelled {};
 
 uint64_t newLineage() {
   static std::atomic<uint64_t> next{1};
@@ -39,14 +43,20 @@ class NearestWithinRadius {
   void offer(double distance, size_t index) {
     if (count_ == capacity_) {
       const double worst = distances_[capacity_ - 1];
-      if (distance > worst || (distance == worst && index > indices_[capacity_ - 1])) return;
+      if (distance > worst || (distance == worst && index >= indices_[capacity_ - 1])) return;
     } else if (!(distance < squared_radius_)) {
       return;
     }
+    // The insertion point; a point already held (offered as a hint, then met in the tree) is
+    // exactly equal to the entry before it.
+    size_t at = count_ < capacity_ ? count_ : capacity_ - 1;
+    while (at > 0 && (distances_[at - 1] > distance ||
+                      (distances_[at - 1] == distance && indices_[at - 1] > index))) {
+      --at;
+    }
+    if (at > 0 && distances_[at - 1] == distance && indices_[at - 1] == index) return;
     size_t i = count_ < capacity_ ? count_ : capacity_ - 1;
-    for (; i > 0 && (distances_[i - 1] > distance ||
-                     (distances_[i - 1] == distance && indices_[i - 1] > index));
-         --i) {
+    for (; i > at; --i) {
       distances_[i] = distances_[i - 1];
       indices_[i] = indices_[i - 1];
     }
@@ -87,7 +97,9 @@ struct TargetIndex::Tree {
     uint32_t index;
   };
 
-  Tree(const PointList& points, size_t first, size_t last) : begin(first), end(last) {
+  Tree(const PointList& points, size_t first, size_t last,
+       const std::atomic<bool>* cancel = nullptr)
+      : begin(first), end(last), cancel_(cancel) {
     if (last > std::numeric_limits<uint32_t>::max()) throw std::length_error("target too large");
     std::vector<Entry> entries(last - first);
     for (size_t i = 0; i < entries.size(); ++i) {
@@ -95,12 +107,17 @@ struct TargetIndex::Tree {
       entries[i].index = static_cast<uint32_t>(first + i);
     }
     nodes.reserve(2 * entries.size() / kLeafSize + 2);
-    build(&entries, 0, static_cast<uint32_t>(entries.size()), &box_min, &box_max);
+    build(&entries, 0, static_cast<uint32_t>(entries.size()), 0, &box_min, &box_max);
+    cancel_ = nullptr;
     order.resize(entries.size());
     for (size_t i = 0; i < entries.size(); ++i) order[i] = entries[i].index;
   }
 
-  uint32_t build(std::vector<Entry>* entries, uint32_t lo, uint32_t hi, Point* mn, Point* mx) {
+  uint32_t build(std::vector<Entry>* entries, uint32_t lo, uint32_t hi, int depth, Point* mn,
+                 Point* mx) {
+    if (cancel_ && depth < kCancelCheckDepth && cancel_->load(std::memory_order_relaxed)) {
+      throw Cancelled();
+    }
     std::vector<Entry>& e = *entries;
     Point bmin = Point::Constant(std::numeric_limits<double>::infinity());
     Point bmax = -bmin;
@@ -133,8 +150,8 @@ struct TargetIndex::Tree {
                        [axis](const Entry& a, const Entry& b) { return a.p[axis] < b.p[axis]; });
     }
     Point lmin, lmax, rmin, rmax;
-    const uint32_t left = build(entries, lo, mid, &lmin, &lmax);
-    const uint32_t right = build(entries, mid, hi, &rmin, &rmax);
+    const uint32_t left = build(entries, lo, mid, depth + 1, &lmin, &lmax);
+    const uint32_t right = build(entries, mid, hi, depth + 1, &rmin, &rmax);
     Node& node = nodes[id];
     node.first = left;
     node.last = right;
@@ -187,6 +204,9 @@ struct TargetIndex::Tree {
     if (mindist <= result->bound()) searchNode(points, far, q, mindist, dists, result);
     dists[axis] = saved;
   }
+
+ private:
+  const std::atomic<bool>* cancel_ = nullptr;  // only while building
 };
 
 TargetIndex::TargetIndex(PointList points)
@@ -208,7 +228,15 @@ std::shared_ptr<const TargetIndex> TargetIndex::extended(
   std::shared_ptr<TargetIndex> index(new TargetIndex());
   index->points_ = std::move(points);
   const bool reuse = previous && previous->size() <= index->points_.size();
-  if (reuse) index->trees_ = previous->trees_;
+  if (reuse) {
+    // From the fold's one tree when there is one (it is published after folded_tree_ is set).
+    if (previous->folded_.load(std::memory_order_acquire)) {
+      std::lock_guard<std::mutex> lock(previous->fold_mutex_);
+      index->trees_ = {previous->folded_tree_};
+    } else {
+      index->trees_ = previous->trees_;
+    }
+  }
   index->lineage_ = reuse ? previous->lineage_ : newLineage();
   const size_t start = reuse ? previous->size() : 0;
   index->last_indexed_ = index->points_.size() - start;
@@ -233,11 +261,33 @@ std::shared_ptr<const TargetIndex> TargetIndex::extended(
   return index;
 }
 
+bool TargetIndex::fold(const std::atomic<bool>* cancel) const {
+  std::lock_guard<std::mutex> lock(fold_mutex_);
+  if (trees_.size() <= 1 || folded_tree_) return false;
+  try {
+    auto tree = std::make_shared<const Tree>(points_, 0, points_.size(), cancel);
+    folded_tree_ = std::move(tree);
+  } catch (const Cancelled&) {
+    return false;
+  }
+  folded_.store(folded_tree_.get(), std::memory_order_release);
+  return true;
+}
+
 size_t TargetIndex::nearestWithinRadius(const Point& query, int k, double radius, size_t* indices,
-                                        double* squared_distances) const {
+                                        double* squared_distances, const size_t* hints,
+                                        size_t n_hints) const {
   if (points_.empty() || k <= 0 || !(radius > 0.0)) return 0;
   NearestWithinRadius result(static_cast<size_t>(k), radius * radius, indices, squared_distances);
-  for (const auto& tree : trees_) tree->search(points_, query, &result);
+  for (size_t h = 0; h < n_hints; ++h) {
+    if (hints[h] < points_.size())
+      result.offer(squaredDistance(query, points_[hints[h]]), hints[h]);
+  }
+  if (const Tree* folded = folded_.load(std::memory_order_acquire)) {
+    folded->search(points_, query, &result);
+  } else {
+    for (const auto& tree : trees_) tree->search(points_, query, &result);
+  }
   return result.size();
 }
 

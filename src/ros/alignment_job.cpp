@@ -4,7 +4,7 @@
 
 #include "pda_registration/core/alignment_gate.hpp"
 #include "pda_registration/core/pose_covariance.hpp"
-#include "pda_registration/core/source_budget.hpp"
+#include "pda_registration/core/representative_subset.hpp"
 #include "pda_registration/ros/input_checks.hpp"
 #include "pda_registration/ros/point_cloud_conversion.hpp"
 #include "pda_registration/ros/seed_lookup.hpp"
@@ -14,7 +14,19 @@ namespace {
 // How long an alignment waits for the very first dense map to be indexed (a 5M-point map takes a
 // few seconds); later alignments take the newest ready map at once.
 constexpr double kFirstMapTimeout = 30.0;
+// How often the sparse clouds' spacing is measured again (a kd-tree over one cloud: ~3 ms for
+// 30k points); the keeper re-indexes only when it changes by more than a factor of sqrt(2).
+constexpr double kSpacingPeriod = 10.0;
 }  // namespace
+
+void AlignmentJob::reportSpacing(const PointList& sparse) {
+  const ros::WallTime now = ros::WallTime::now();
+  if (!last_spacing_.isZero() && (now - last_spacing_).toSec() < kSpacingPeriod) return;
+  last_spacing_ = now;
+  // The cloud as received (before source_voxel_size): a sensor's own spacing. Thinning the map to
+  // a source voxel as well cost 2 mm on the dense-dense Kinect pair (both ~2 cm apart).
+  c_.keeper->noteSparseSpacing(sampleSpacing(sparse));
+}
 
 void AlignmentJob::run(const SparseJob& job, const LiveParameters& live) {
   const NodeSettings& settings = *c_.settings;
@@ -80,12 +92,13 @@ void AlignmentJob::run(const SparseJob& job, const LiveParameters& live) {
     seed_target_source = seed.T_dense_sparse.inverse();
     source_points = &map->points;
   }
-  registration->setParameters(live.registration);
-  // Beyond the source budget, an unbiased subsample is aligned (source_budget.hpp).
-  const PointList budgeted = applySourceBudget(
-      *source_points, static_cast<size_t>(std::max(live.registration.max_source_points, 0)));
-  const PointList& aligned_source = budgeted.empty() ? *source_points : budgeted;
-  const RegistrationResult result = registration->align(aligned_source, seed_target_source,
+  // No more threads than the cores other processes leave idle (idle_cores.hpp).
+  RegistrationParameters parameters = live.registration;
+  parameters.threads = idle_cores_.threadsFor(parameters.threads);
+  registration->setParameters(parameters);
+  // Beyond max_source_points the core aligns an unbiased subsample (source_budget.hpp); a
+  // swapped alignment still indexes the whole dense source as its target.
+  const RegistrationResult result = registration->align(*source_points, seed_target_source,
                                                         want_markers ? &associations : nullptr);
   const Verdict verdict = judgeAlignment(result, seed_target_source, live.acceptance);
   c_.status->update([&](AlignmentStatusValues& s) {
@@ -99,6 +112,7 @@ void AlignmentJob::run(const SparseJob& job, const LiveParameters& live) {
     s.roles_swapped = result.roles_swapped;
     s.source_points_used = result.source_points_used;
     s.source_points_received = source_points->size();
+    s.threads_used = parameters.threads;
     if (verdict.accepted)
       ++s.accepted;
     else
@@ -107,12 +121,14 @@ void AlignmentJob::run(const SparseJob& job, const LiveParameters& live) {
   if (!verdict.accepted) {
     c_.log.problem("rejected",
                    "alignment rejected, keeping the last good estimate: " + verdict.reason, false);
+    if (settings.dense_is_target) reportSpacing(sparse.points);
     return;
   }
   publish({&cloud, &dense_frame, &result, source_points, want_markers ? &associations : nullptr,
            &live});
   const double latency_ms = (ros::WallTime::now() - job.received).toSec() * 1000.0;
   c_.status->update([&](AlignmentStatusValues& s) { s.last_latency_ms = latency_ms; });
+  if (settings.dense_is_target) reportSpacing(sparse.points);
   ROS_DEBUG("aligned in %.0f ms (%d runs, sigma %.4f, inliers %.2f), latency %.0f ms",
             result.time_ms, result.runs, result.sigma, result.inlier_fraction, latency_ms);
 }

@@ -64,14 +64,19 @@ void AlignmentStatus::fill(diagnostic_updater::DiagnosticStatusWrapper& status,
              s.dense_arrival.isZero() ? -1.0 : (ros::WallTime::now() - s.dense_arrival).toSec());
   status.add("dense map publishers", dense_publishers);
   status.add("indexed target points", s.indexed_points);
+  status.add("sparse cloud spacing [cm]", 100.0 * s.sparse_spacing);
+  status.add("dense map subset voxel [cm]", 100.0 * s.dense_subset_voxel);
   status.add("index age [s]",
              s.index_ready.isZero() ? -1.0 : (ros::WallTime::now() - s.index_ready).toSec());
   status.add("index update time [ms]", s.index_update_ms);
   status.add("index update CPU time [ms]", s.index_update_cpu_ms);
   status.add("index update", s.index_update);
   status.add("index updates", s.index_updates);
+  status.add("index folds", s.index_folds);
+  status.add("index fold time [ms]", s.index_fold_ms);
   status.add("source points received", s.source_points_received);
   status.add("source points used", s.source_points_used);
+  status.add("threads used", s.threads_used);
   status.add("target cropped", s.target_cropped);
   status.add("roles swapped", s.roles_swapped);
   status.add("resident memory [MB]", processMemory().resident_mb);

@@ -6,6 +6,7 @@
 #include <unistd.h>
 
 #include <chrono>
+#include <cmath>
 #include <ctime>
 #include <cstdio>
 
@@ -57,6 +58,25 @@ void DenseMapKeeper::put(const sensor_msgs::PointCloud2ConstPtr& cloud) {
     if (front_ < 0) pending_first_ = true;
   }
   queue_.putDense(cloud);  // maps are slow; a replaced pending map needs no counting
+  fold_cancel_ = true;     // after the put: a fold that starts later sees the map waiting
+}
+
+void DenseMapKeeper::noteSparseSpacing(double spacing) {
+  if (!(spacing > 0.0) || !std::isfinite(spacing)) return;
+  const double current = sparse_spacing_.load();
+  // Scans of one sensor vary a little: only a real change re-indexes.
+  if (current > 0.0 && std::abs(std::log2(spacing / current)) <= 0.5) return;
+  sparse_spacing_ = spacing;
+  reindexLatest();
+}
+
+void DenseMapKeeper::reindexLatest() {
+  sensor_msgs::PointCloud2ConstPtr latest;
+  {
+    std::lock_guard<std::mutex> lock(mutex_);
+    latest = latest_;
+  }
+  if (latest && !queue_.denseWaiting()) put(latest);
 }
 
 DenseMapKeeper::Borrowed::~Borrowed() {
@@ -104,7 +124,55 @@ void DenseMapKeeper::loop() {
     // Release the message now and hand freed memory back (see the worker loop).
     dense.reset();
     malloc_trim(0);
+    foldLatest();
   }
+}
+
+void DenseMapKeeper::foldLatest() {
+  const std::shared_ptr<const TargetIndex> index = std::move(to_fold_);
+  to_fold_.reset();
+  if (!index || index->trees() <= 1) return;
+  // Two trees: the new map first (its update adds a third). More: every query descends each, and
+  // on a busy machine a fold at nice +10 outlasts the map period, so cancelling it would let the
+  // trees pile up: the fold goes first and the waiting map is indexed right after.
+  const bool yield_to_maps = index->trees() <= 2;
+  fold_cancel_ = false;
+  if (yield_to_maps && queue_.denseWaiting()) return;
+  const auto start = std::chrono::steady_clock::now();
+  const double cpu_start = threadCpuMs();
+  if (!index->fold(yield_to_maps ? &fold_cancel_ : nullptr)) return;
+  const double ms =
+      std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+  const double cpu_ms = threadCpuMs() - cpu_start;
+  status_->update([&](AlignmentStatusValues& s) {
+    s.index_fold_ms = ms;
+    ++s.index_folds;
+  });
+  char line[200];
+  std::snprintf(line, sizeof(line),
+                "index of %zu points folded into one tree in %.0f ms (%.0f ms CPU)",
+                index->size(), ms, cpu_ms);
+  log_.info(line);
+}
+
+bool DenseMapKeeper::keptWhole(DenseMapSlot* front, const PointList& map, double sparse_spacing) {
+  // The subset fields are the keeper's own: alignments borrowing the front never read them.
+  if (front->subset && front->subset->thinned()) return false;
+  std::unique_ptr<RepresentativeSubset> subset;
+  if (sparse_spacing > 0.0) {
+    subset = std::make_unique<RepresentativeSubset>(sparse_spacing);
+    subset->update(map);
+    if (subset->thinned()) return false;
+  }
+  front->subset = std::move(subset);
+  front->sparse_spacing = sparse_spacing;
+  status_->update([&](AlignmentStatusValues& s) { s.sparse_spacing = sparse_spacing; });
+  char line[200];
+  std::snprintf(line, sizeof(line),
+                "dense map kept whole: not much finer than the sparse clouds' spacing %.1f cm",
+                100.0 * sparse_spacing);
+  log_.info(line);
+  return true;
 }
 
 void DenseMapKeeper::update(const sensor_msgs::PointCloud2ConstPtr& cloud) {
@@ -114,10 +182,17 @@ void DenseMapKeeper::update(const sensor_msgs::PointCloud2ConstPtr& cloud) {
     return;
   }
   const uint64_t fingerprint = cloudFingerprint(*cloud);
-  int back;
+  const LiveParameters live = parameters_();
+  const double sparse_spacing =
+      dense_is_target_ && live.dense_subset ? sparse_spacing_.load() : 0.0;
+  int back, front;
+  bool same_map;
   {
     std::unique_lock<std::mutex> lock(mutex_);
-    if (front_ >= 0 && slots_[front_].fingerprint == fingerprint) {
+    if (dense_is_target_) latest_ = cloud;
+    front = front_;
+    same_map = front_ >= 0 && slots_[front_].fingerprint == fingerprint;
+    if (same_map && slots_[front_].sparse_spacing == sparse_spacing) {
       lock.unlock();
       status_->update([](AlignmentStatusValues& s) {
         ++s.dense_unchanged;
@@ -138,6 +213,9 @@ void DenseMapKeeper::update(const sensor_msgs::PointCloud2ConstPtr& cloud) {
   }
   const double convert_ms =
       std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+  if (same_map && dense_is_target_ && keptWhole(&slots_[front], converted.points, sparse_spacing)) {
+    return;
+  }
   {
     // An alignment that began before the last swap may still use the back slot: let it finish.
     std::unique_lock<std::mutex> lock(mutex_);
@@ -150,9 +228,19 @@ void DenseMapKeeper::update(const sensor_msgs::PointCloud2ConstPtr& cloud) {
   const char* how = "stored";
   size_t appended = 0;
   if (dense_is_target_) {
-    slot.registration.setParameters(parameters_());
+    slot.registration.setParameters(live.registration);
     const std::shared_ptr<const TargetIndex> previous = slot.registration.target();
-    if (!slot.registration.setTarget(std::move(converted.points))) {
+    slot.map_points = converted.points.size();
+    if (!(sparse_spacing > 0.0)) {
+      slot.subset.reset();
+    } else if (!slot.subset || slot.subset->voxelSize() != sparse_spacing) {
+      slot.subset = std::make_unique<RepresentativeSubset>(sparse_spacing);
+    }
+    slot.sparse_spacing = sparse_spacing;
+    if (slot.subset) slot.subset->update(converted.points);
+    PointList target = slot.subset && slot.subset->thinned() ? slot.subset->points()
+                                                             : std::move(converted.points);
+    if (!slot.registration.setTarget(std::move(target))) {
       // The previous map is gone with it: no map until the next one, and a re-publication of
       // this one is tried again rather than skipped as unchanged.
       {
@@ -160,14 +248,15 @@ void DenseMapKeeper::update(const sensor_msgs::PointCloud2ConstPtr& cloud) {
         front_ = -1;
       }
       slot.fingerprint = 0;
+      slot.subset.reset();
       log_.problem("dense index",
                    "dense cloud " + describeCloud(*cloud, topic_) +
                        " could not be indexed; no map until the next one",
                    true);
       return;
     }
-    slot.map_points = slot.registration.targetCloudSize();
     const std::shared_ptr<const TargetIndex> index = slot.registration.target();
+    to_fold_ = index;
     if (index && previous && index->extends(*previous)) {
       how = "extended";
       appended = index->size() - previous->size();
@@ -194,8 +283,11 @@ void DenseMapKeeper::update(const sensor_msgs::PointCloud2ConstPtr& cloud) {
   }
   changed_.notify_all();
   const size_t points = slot.map_points;
+  const double subset_voxel = slot.subset && slot.subset->thinned() ? slot.subset->voxelSize() : 0.0;
   status_->update([&](AlignmentStatusValues& s) {
     s.dense_points = points;
+    s.sparse_spacing = sparse_spacing;
+    s.dense_subset_voxel = subset_voxel;
     s.dense_arrival = now;
     s.index_ready = now;
     s.index_update_ms = index_ms;
@@ -203,12 +295,17 @@ void DenseMapKeeper::update(const sensor_msgs::PointCloud2ConstPtr& cloud) {
     s.index_update = how;
     ++s.index_updates;
   });
-  char line[400];
+  char subset[120] = "";
+  if (subset_voxel > 0.0) {
+    std::snprintf(subset, sizeof(subset), "; indexed: a subset of %zu points at %.1f cm",
+                  slot.subset->points().size(), 100.0 * subset_voxel);
+  }
+  char line[500];
   std::snprintf(line, sizeof(line),
-                "dense map from %s: %zu points (%zu non-finite dropped), ready in %.0f ms "
+                "dense map from %s: %zu points (%zu non-finite dropped)%s, ready in %.0f ms "
                 "(converted in %.0f ms, %s in %.0f ms, %.0f ms CPU%s)",
-                topic_.c_str(), points, converted.non_finite, ms, convert_ms, how, index_ms,
-                index_cpu_ms,
+                topic_.c_str(), points, converted.non_finite, subset, ms, convert_ms, how,
+                index_ms, index_cpu_ms,
                 appended > 0 ? (", " + std::to_string(appended) + " points appended").c_str() : "");
   log_.info(line);
 }

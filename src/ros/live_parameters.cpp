@@ -41,6 +41,7 @@ LiveParameters liveParametersFrom(const PdaRegistrationConfig& c) {
   p.crop_max_rotation_deg = c.max_correction_rotation_deg;
   live.min_interval = c.min_interval;
   live.max_markers = static_cast<size_t>(std::max(c.max_markers, 0));
+  live.dense_subset = c.dense_subset;
   return live;
 }
 

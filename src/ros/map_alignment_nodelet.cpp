@@ -52,7 +52,7 @@ void MapAlignmentNodelet::onInit() {
   keeper_ = std::make_unique<DenseMapKeeper>(settings_.dense_is_target,
                                              settings_.expected_dense_frame, dense_topic, &status_,
                                              nodeletLog(),
-                                             [this] { return liveParameters().registration; });
+                                             [this] { return liveParameters(); });
   job_ = std::make_unique<AlignmentJob>(AlignmentJobContext{
       &settings_, tf_buffer_.get(), publisher_.get(), edges_.get(), &status_, keeper_.get(),
       nodeletLog(), sparse_topic, dense_topic});
@@ -83,8 +83,13 @@ void MapAlignmentNodelet::reconfigure(PdaRegistrationConfig& config, uint32_t) {
   }
   accepted_config_ = config;
   have_accepted_config_ = true;
-  std::lock_guard<std::mutex> lock(live_mutex_);
-  live_ = live;
+  bool subset_switched;
+  {
+    std::lock_guard<std::mutex> lock(live_mutex_);
+    subset_switched = live_.dense_subset != live.dense_subset;
+    live_ = live;
+  }
+  if (subset_switched && keeper_) keeper_->reindexLatest();
 }
 
 LiveParameters MapAlignmentNodelet::liveParameters() {

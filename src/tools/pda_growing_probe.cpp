@@ -5,7 +5,8 @@
 // (then held for --hold s), while the case's sparse cloud is published at --sparse-rate Hz with a
 // new stamp each time. Each ~transform is matched to its sparse cloud by stamp. Prints one JSON
 // line (median_ms, p95_ms, max_dense_points, index_update_ms: the median of the nodelet's index
-// updates, and the latency per dense-map size band) and, with --samples FILE, writes one
+// updates, the points indexed (a subset when the map is thinned), folds, threads, and the latency
+// per dense-map size band) and, with --samples FILE, writes one
 // "dense_points,latency_ms" line per answer for the plot. Needs a running roscore and the nodelet
 // (scripts/measure_latency --growing starts both). Every wait is bounded by --timeout.
 
@@ -110,6 +111,10 @@ int main(int argc, char** argv) {
   size_t ready_points = 0;                  // the nodelet's map in use (diagnostics)
   std::vector<std::pair<size_t, double>> samples;  // (dense points, latency ms)
   std::map<size_t, std::pair<double, double>> index_updates;  // count -> wall, CPU [ms]
+  // The last diagnostics' index figures: points indexed (the map's subset when thinned), folds
+  // of the trees, threads of the last alignment.
+  size_t indexed_points = 0, folds = 0, threads_used = 0;
+  double subset_voxel_cm = 0.0;
   ros::Subscriber results = node.subscribe<geometry_msgs::TransformStamped>(
       "/" + nodelet + "/transform", 100, [&](const geometry_msgs::TransformStamped::ConstPtr& m) {
         const ros::WallTime now = ros::WallTime::now();
@@ -128,6 +133,11 @@ int main(int argc, char** argv) {
           std::lock_guard<std::mutex> lock(mutex);
           try {
             ready_points = std::stoul(values["dense map points"]);
+            indexed_points = std::max<size_t>(indexed_points,
+                                              std::stoul(values["indexed target points"]));
+            folds = std::stoul(values["index folds"]);
+            threads_used = std::stoul(values["threads used"]);
+            subset_voxel_cm = std::stod(values["dense map subset voxel [cm]"]);
             const size_t count = std::stoul(values["index updates"]);
             if (count > 0) {
               index_updates[count] = {std::stod(values["index update time [ms]"]),
@@ -271,6 +281,8 @@ int main(int argc, char** argv) {
   json.add("index_update_cpu_ms", updates.empty() ? -1.0 : percentile(updates_cpu, 0.5));
   json.add("index_update_max_ms", updates.empty() ? -1.0 : percentile(updates, 1.0));
   json.add("index_updates_seen", updates.size());
+  json.add("max_indexed_points", indexed_points).add("subset_voxel_cm", subset_voxel_cm);
+  json.add("index_folds", folds).add("threads_used", threads_used);
   json.addRaw("bands", bands.str());
   std::cout << json.str() << std::endl;
   if (cl.has("samples")) {

@@ -17,7 +17,7 @@ bool residualsSpanTheSearch(const RegistrationParameters& p, double sigma);
 
 /// Sets result->converged and result->reason from the result's statistics. `came_to_rest`: the
 /// runs stopped on their own (not at the budget); `last_run_step`: the last run's move.
-void judgeAlignment(const RegistrationParameters& p, bool came_to_rest,
+void judgeConvergence(const RegistrationParameters& p, bool came_to_rest,
                     const Increment& last_run_step, RegistrationResult* result);
 
 }  // namespace pda_registration

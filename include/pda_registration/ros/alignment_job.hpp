@@ -14,6 +14,7 @@
 #include "pda_registration/ros/alignment_status.hpp"
 #include "pda_registration/ros/dense_map_keeper.hpp"
 #include "pda_registration/ros/edge_broadcaster.hpp"
+#include "pda_registration/ros/idle_cores.hpp"
 #include "pda_registration/ros/live_parameters.hpp"
 #include "pda_registration/ros/node_settings.hpp"
 
@@ -57,8 +58,14 @@ class AlignmentJob {
   /// was the target.
   Eigen::Matrix<double, 6, 6> publishedCovariance(const RegistrationResult& result) const;
 
+  /// Tells the keeper the sparse clouds' sample spacing (for the dense map's subset), measured
+  /// on the first cloud and then every kSpacingPeriod seconds, after the answer is out.
+  void reportSpacing(const PointList& sparse);
+
   AlignmentJobContext c_;
   PdaRegistration sparse_target_;  // the registration when the sparse cloud is the target
+  ros::WallTime last_spacing_;
+  IdleCores idle_cores_;
 };
 
 }  // namespace pda_registration

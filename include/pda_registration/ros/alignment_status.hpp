@@ -40,8 +40,15 @@ struct AlignmentStatusValues {
   double index_update_ms = 0.0, index_update_cpu_ms = 0.0;
   std::string index_update;
   size_t index_updates = 0;
+  // The sparse clouds' sample spacing, and the voxel of the dense map's indexed subset (0: the
+  // whole map is indexed; core/representative_subset.hpp).
+  double sparse_spacing = 0.0, dense_subset_voxel = 0.0;
+  // Folds of an extended index's trees into one (background, dense_map_keeper.hpp).
+  double index_fold_ms = 0.0;
+  size_t index_folds = 0;
   // Source points of the last alignment: as received, and used (after the budget and filters).
   size_t source_points_received = 0, source_points_used = 0;
+  int threads_used = 0;  ///< by the last alignment: at most `threads`, no more than idle cores
 };
 
 class AlignmentStatus {

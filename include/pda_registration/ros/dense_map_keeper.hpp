@@ -7,9 +7,19 @@
 // (TargetMap::setCloud), and a map re-published unchanged (same 64-bit fingerprint of frame,
 // layout and bytes) is skipped. As the registration source (target_cloud: sparse) a map is only
 // converted.
+//
+// A dense map much finer than the sparse clouds is indexed as its representative subset at the
+// sparse clouds' sample spacing (core/representative_subset.hpp), which the alignment job
+// measures and reports (noteSparseSpacing); the latest map is kept so that it can be indexed
+// again when that spacing first becomes known or changes.
+//
+// An extended index is several kd-trees and every query descends each; after each update the
+// keeper folds the front index's trees into one (TargetIndex::fold, same answers, faster
+// queries). Of two trees the fold gives way to a new map; of more, the new map waits for it.
 
 #include <sensor_msgs/PointCloud2.h>
 
+#include <atomic>
 #include <condition_variable>
 #include <functional>
 #include <memory>
@@ -18,7 +28,9 @@
 #include <thread>
 
 #include "pda_registration/core/pda_registration.hpp"
+#include "pda_registration/core/representative_subset.hpp"
 #include "pda_registration/ros/alignment_status.hpp"
+#include "pda_registration/ros/live_parameters.hpp"
 #include "pda_registration/ros/latest_input_queue.hpp"
 
 namespace pda_registration {
@@ -39,11 +51,14 @@ struct DenseMapSlot {
   uint64_t fingerprint = 0;
   size_t map_points = 0;
   ros::WallTime ready;  // when it became the front
+  // The subset indexed instead of the map (dense map = target), for the spacing below.
+  std::unique_ptr<RepresentativeSubset> subset;
+  double sparse_spacing = 0.0;  // the sparse clouds' spacing it was made for (0: unknown)
 };
 
 class DenseMapKeeper {
  public:
-  using ParameterSource = std::function<RegistrationParameters()>;
+  using ParameterSource = std::function<LiveParameters()>;
   DenseMapKeeper(bool dense_is_target, std::string expected_frame, std::string topic,
                  AlignmentStatus* status, NodeletLog log, ParameterSource parameters);
   ~DenseMapKeeper();  // stops the thread
@@ -53,6 +68,14 @@ class DenseMapKeeper {
 
   /// Queues a map for the keeper thread (a newer one replaces a pending one).
   void put(const sensor_msgs::PointCloud2ConstPtr& cloud);
+
+  /// The sample spacing of the sparse clouds (core sampleSpacing). A change beyond a factor of
+  /// sqrt(2) from the one in use (or the first one) has the latest map indexed again.
+  void noteSparseSpacing(double spacing);
+  /// The spacing in use (0: none known yet).
+  double sparseSpacing() const { return sparse_spacing_.load(); }
+  /// Indexes the latest map again (dense_subset was switched), unless a newer one waits.
+  void reindexLatest();
 
   /// The front slot, borrowed until the Borrowed goes away; empty when there is no map. Waits
   /// (at most `first_map_timeout` s) only while the first map is being indexed.
@@ -75,6 +98,11 @@ class DenseMapKeeper {
  private:
   void loop();
   void update(const sensor_msgs::PointCloud2ConstPtr& cloud);
+  /// The front's map again, with a new sparse spacing: true (nothing to re-index) when the map
+  /// stays whole, as the front has it.
+  bool keptWhole(DenseMapSlot* front, const PointList& map, double sparse_spacing);
+  /// Folds the trees of the index update() made last, unless a map arrives first.
+  void foldLatest();
   void giveBack(DenseMapSlot* slot);
 
   const bool dense_is_target_;
@@ -91,6 +119,10 @@ class DenseMapKeeper {
   int borrowed_[2] = {0, 0};   // alignments using each slot
   bool pending_first_ = false;  // a map is on its way and none is ready yet
   bool stopped_ = false;
+  std::shared_ptr<const TargetIndex> to_fold_;  // keeper thread only
+  std::atomic<double> sparse_spacing_{0.0};
+  sensor_msgs::PointCloud2ConstPtr latest_;       // guarded by mutex_: indexed again on a change
+  std::atomic<bool> fold_cancel_{false};          // a map arrived: stop folding
   std::thread thread_;
 };
 

@@ -28,6 +28,12 @@ class LatestInputQueue {
     return true;
   }
 
+  /// True when a dense input waits (the keeper's background work gives way to it).
+  bool denseWaiting() {
+    std::lock_guard<std::mutex> lock(mutex_);
+    return dense_.pending;
+  }
+
   void stop() {
     {
       std::lock_guard<std::mutex> lock(mutex_);

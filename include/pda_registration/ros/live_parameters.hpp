@@ -14,6 +14,9 @@ struct LiveParameters {
   AcceptanceThresholds acceptance;
   double min_interval = 0.0;  ///< [s]
   size_t max_markers = 20000;
+  /// Index a dense map much finer than the sparse clouds as its representative subset at their
+  /// sample spacing (core/representative_subset.hpp).
+  bool dense_subset = true;
 };
 
 LiveParameters liveParametersFrom(const PdaRegistrationConfig& config);
