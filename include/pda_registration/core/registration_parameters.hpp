@@ -35,8 +35,8 @@ struct RegistrationParameters {
   double min_radius = 0.25;
   // --- E-step ------------------------------------------------------------------------------
   double nu = 5.0;  ///< Student-t degrees of freedom; +inf gives the Gaussian of eq. 19
-  /// Fixed, or estimated by EM from `nu` on. Measured on the benchmark it settles at 2-4 on every
-  /// case and is not better overall (docs/algorithm.md), hence not the default.
+  /// Fixed, or estimated by EM from `nu` on. Measured on the benchmark it settles at 1-2.4 on most
+  /// cases and is not better overall (docs/algorithm.md), hence not the default.
   NuMode nu_mode = NuMode::kFixed;
   SigmaMode sigma_mode = SigmaMode::kEstimated;
   double fixed_sigma = 1.0;  ///< [length] sigma used when sigma_mode == kFixed
