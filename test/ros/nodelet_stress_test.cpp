@@ -10,6 +10,7 @@
 
 #include <algorithm>
 #include <atomic>
+#include <cmath>
 #include <random>
 #include <thread>
 
@@ -48,6 +49,21 @@ double longestGap(std::vector<ros::WallTime> times, ros::WallTime from, ros::Wal
   double gap = std::max((times.front() - from).toSec(), (to - times.back()).toSec());
   for (size_t i = 1; i < times.size(); ++i) gap = std::max(gap, (times[i] - times[i - 1]).toSec());
   return gap;
+}
+
+// One diagnostics status's input counters, read together so they describe the same moment.
+struct InputCounts {
+  double received = 0.0, dropped = 0.0, aligned = 0.0;
+};
+
+InputCounts inputCounts(const diagnostic_msgs::DiagnosticStatus& status) {
+  InputCounts counts;
+  for (const diagnostic_msgs::KeyValue& entry : status.values) {
+    if (entry.key == "sparse clouds received") counts.received = std::stod(entry.value);
+    if (entry.key == "dropped stale inputs") counts.dropped = std::stod(entry.value);
+    if (entry.key == "alignments") counts.aligned = std::stod(entry.value);
+  }
+  return counts;
 }
 
 TEST(NodeletStress, StaysResponsiveDropsStaleInputsAndKeepsMemoryFlat) {
@@ -130,6 +146,7 @@ TEST(NodeletStress, StaysResponsiveDropsStaleInputsAndKeepsMemoryFlat) {
   ASSERT_TRUE(harness.waitForTransformsBeyond(0, 60.0)) << "no alignment under load";
   ros::WallDuration(2.0).sleep();
   ASSERT_TRUE(harness.waitForFreshDiagnostics(5.0));
+  const InputCounts counts_start = inputCounts(harness.lastDiagnostics());
   const double rss_start = std::stod(harness.diagnosticValue("resident memory [MB]"));
   const size_t transforms_start = harness.transformCount();
   const ros::WallTime start = ros::WallTime::now();
@@ -142,6 +159,7 @@ TEST(NodeletStress, StaysResponsiveDropsStaleInputsAndKeepsMemoryFlat) {
   }
   const ros::WallTime end = ros::WallTime::now();
   ASSERT_TRUE(harness.waitForFreshDiagnostics(5.0));
+  const InputCounts counts_end = inputCounts(harness.lastDiagnostics());
   const double rss_end = std::stod(harness.diagnosticValue("resident memory [MB]"));
   rss_samples.push_back(rss_end);
   running = false;
@@ -149,7 +167,11 @@ TEST(NodeletStress, StaysResponsiveDropsStaleInputsAndKeepsMemoryFlat) {
   sparse_feed.join();
 
   const size_t aligned = harness.transformCount() - transforms_start;
-  const double dropped = std::stod(harness.diagnosticValue("dropped stale inputs"));
+  const double dropped = counts_end.dropped - counts_start.dropped;
+  // Inputs received in the measured period that were neither aligned nor dropped as stale: at most
+  // the one in the mailbox and the one being aligned at each end of the period.
+  const double held = (counts_end.received - counts_start.received) - dropped -
+                      (counts_end.aligned - counts_start.aligned);
   std::vector<double> latencies;
   double tf_gap, diagnostics_gap;
   {
@@ -167,24 +189,26 @@ TEST(NodeletStress, StaysResponsiveDropsStaleInputsAndKeepsMemoryFlat) {
     rss_series += " " + std::to_string(static_cast<int>(rss_samples[i]));
   std::cout << "stress: " << duration << " s, sent " << sparse_sent << " sparse (100k) + "
             << dense_sent << " dense (1M); " << aligned << " alignments accepted, " << dropped
-            << " stale inputs dropped; latency median " << percentile(latencies, 0.5) << " ms, p95 "
-            << percentile(latencies, 0.95) << " ms; RSS " << rss_start << " -> " << rss_end
-            << " MB (halves' medians " << first_half_rss << ", " << second_half_rss
-            << "; every 5 s:" << rss_series << "); longest gaps: tf " << tf_gap * 1000.0
-            << " ms, diagnostics " << diagnostics_gap * 1000.0 << " ms" << std::endl;
+            << " stale inputs dropped, " << held << " held; latency median "
+            << percentile(latencies, 0.5) << " ms, p95 " << percentile(latencies, 0.95)
+            << " ms; RSS " << rss_start << " -> " << rss_end << " MB (halves' medians "
+            << first_half_rss << ", " << second_half_rss << "; every 5 s:" << rss_series
+            << "); longest gaps: tf " << tf_gap * 1000.0 << " ms, diagnostics "
+            << diagnostics_gap * 1000.0 << " ms" << std::endl;
 
   // Responsive: the 10 Hz tf re-broadcast never paused for a second, nor the 1 Hz diagnostics
   // for three.
   EXPECT_LT(tf_gap, 1.0);
   EXPECT_LT(diagnostics_gap, 3.0);
-  // Not queueing: most inputs were dropped as stale, and latency did not pile up.
-  EXPECT_GT(dropped, 0.5 * static_cast<double>(sparse_sent));
+  // Not queueing: every input was either aligned or dropped as stale (how many of each depends
+  // on the machine: a 2-core one drops ~80 %, a fast one under half), and latency did not pile up.
+  EXPECT_LE(std::abs(held), 4.0) << "inputs received but neither aligned nor dropped";
   EXPECT_LT(percentile(latencies, 0.95), 10000.0);
   // Alignments do not wait for index builds: when each alignment waited for its map's index the
   // median was 1055 ms at 1 alignment/s; indexing beside the alignments and the source budget
   // bring it to ~270-330 ms and 3-4/s on a 2-core machine (the figure itself is measured by the
-  // 120 s run in docs/hardening.md, not asserted here: it moves +-15 % with the machine). The bounds
-  // catch a return of the waiting at half its cost.
+  // 120 s run in docs/hardening.md, not asserted here: it moves +-15 % with the machine). The
+  // bounds catch a return of the waiting at half its cost.
   EXPECT_LE(percentile(latencies, 0.5), 600.0);
   EXPECT_GE(static_cast<double>(aligned), 2.0 * duration);
   // Flat memory: the second half of the run sits no higher than the first (plus noise). Holding
