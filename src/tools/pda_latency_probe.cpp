@@ -96,12 +96,18 @@ int main(int argc, char** argv) {
   // The nodelet's own view (diagnostics, 1 Hz): map size, index size, cropping, memory.
   std::map<std::string, std::string> diagnostics;
   size_t diagnostics_received = 0;
+  // The alignments' thread count as each status reported it (the nodelet uses the cores other
+  // processes leave idle, so a busy neighbour shows here).
+  std::vector<std::string> threads_seen;
   ros::Subscriber diagnostics_subscriber = node.subscribe<diagnostic_msgs::DiagnosticArray>(
       "/diagnostics", 10, [&](const diagnostic_msgs::DiagnosticArray::ConstPtr& m) {
         for (const auto& status : m->status) {
           if (status.name.find(nodelet + ": alignment") == std::string::npos) continue;
           std::lock_guard<std::mutex> lock(mutex);
-          for (const auto& entry : status.values) diagnostics[entry.key] = entry.value;
+          for (const auto& entry : status.values) {
+            diagnostics[entry.key] = entry.value;
+            if (entry.key == "threads used") threads_seen.push_back(entry.value);
+          }
           ++diagnostics_received;
         }
       });
@@ -245,6 +251,9 @@ int main(int argc, char** argv) {
   json.add("target_cropped", cropped == "True" || cropped == "true");
   json.addRaw("last_alignment_ms", alignment_ms.empty() ? "null" : alignment_ms);
   json.addRaw("nodelet_rss_mb", resident.empty() ? "null" : resident);
+  std::string threads = "[";
+  for (size_t i = 0; i < threads_seen.size(); ++i) threads += (i ? "," : "") + threads_seen[i];
+  json.addRaw("threads_used_1hz", threads + "]");
   json.add("mean_distance", e.mean_distance).add("rot_err_deg", e.rotation_deg);
   json.add("trans_err_m", e.translation);
   std::cout << json.str() << std::endl;
