@@ -1,14 +1,19 @@
-# gtest for the scene and sensor simulation, its bag and the pda_simulate tool (run as a user
-# runs it). Included from test/CMakeLists.txt.
-catkin_add_gtest(simulation_test simulation_test.cpp)
-target_compile_options(simulation_test PRIVATE ${PDA_WARNINGS})
+# gtests for the simulation. Included from test/CMakeLists.txt.
+# The scene and the sensors (ray casting, Kinect 2 and VLP-16 geometry and noise).
+catkin_add_gtest(sensor_simulation_test sensor_simulation_test.cpp)
+target_compile_options(sensor_simulation_test PRIVATE ${PDA_WARNINGS})
+target_link_libraries(sensor_simulation_test pda_registration_simulation gtest_main)
+
+# The whole simulation, its bag and the pda_simulate tool (run as a user runs it).
+catkin_add_gtest(map_simulation_test map_simulation_test.cpp)
+target_compile_options(map_simulation_test PRIVATE ${PDA_WARNINGS})
 # The bag test reads the bag back with rosbag::View.
-target_include_directories(simulation_test SYSTEM PRIVATE ${catkin_INCLUDE_DIRS})
-target_link_libraries(simulation_test
+target_include_directories(map_simulation_test SYSTEM PRIVATE ${catkin_INCLUDE_DIRS})
+target_link_libraries(map_simulation_test
   pda_test_support pda_registration_simulation gtest_main ${catkin_LIBRARIES})
-target_compile_definitions(simulation_test PRIVATE
+target_compile_definitions(map_simulation_test PRIVATE
   PDA_SIMULATE_BINARY="$<TARGET_FILE:pda_simulate>")
-add_dependencies(simulation_test pda_simulate)
+add_dependencies(map_simulation_test pda_simulate)
 
 # The pose covariance against Monte Carlo and the simulated office's exact ground truth.
 catkin_add_gtest(pose_covariance_test pose_covariance_test.cpp)
