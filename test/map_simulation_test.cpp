@@ -1,5 +1,7 @@
 // The whole simulation: the drift distortion, same-seed determinism of the maps, PDA on a
 // simulated pair and under the source budget, the bag, and pda_simulate run as a user runs it.
+#include "pda_registration/simulation/map_simulation.hpp"
+
 #include <geometry_msgs/TransformStamped.h>
 #include <gtest/gtest.h>
 #include <omp.h>
@@ -21,7 +23,6 @@
 #include "pda_registration/core/transform_io.hpp"
 #include "pda_registration/simulation/drift_distortion.hpp"
 #include "pda_registration/simulation/map_bag_writer.hpp"
-#include "pda_registration/simulation/map_simulation.hpp"
 #include "pda_registration/simulation/sensor_paths.hpp"
 #include "pda_registration/tools/cloud_io.hpp"
 #include "test_support/command_run.hpp"
