@@ -38,10 +38,10 @@ void AlignmentJob::run(const SparseJob& job, const LiveParameters& live) {
   }
   CloudConversion sparse = fromPointCloud2(cloud);
   if (!sparse.ok()) {
-    c_.log.problem("sparse " + sparse.error.substr(0, 12),
-                   "sparse cloud " + describeCloud(cloud, c_.sparse_topic) +
-                       " refused: " + sparse.error,
-                   true);
+    c_.log.problem(
+        "sparse " + sparse.error.substr(0, 12),
+        "sparse cloud " + describeCloud(cloud, c_.sparse_topic) + " refused: " + sparse.error,
+        true);
     return;
   }
   // The newest ready map; only while the first one is being indexed does this wait.
@@ -73,7 +73,8 @@ void AlignmentJob::run(const SparseJob& job, const LiveParameters& live) {
     previous_seed = s.last_seed;
     s.last_seed = seed.source;
   });
-  if (seed.source != previous_seed) c_.log.info(std::string("seeding from ") + toString(seed.source));
+  if (seed.source != previous_seed)
+    c_.log.info(std::string("seeding from ") + toString(seed.source));
 
   // The core aligns source to target; the output is always dense <- sparse.
   const bool want_markers = c_.publisher->hasAssociationSubscribers() && live.max_markers > 0;
@@ -94,7 +95,7 @@ void AlignmentJob::run(const SparseJob& job, const LiveParameters& live) {
   }
   // No more threads than the cores other processes leave idle (idle_cores.hpp).
   RegistrationParameters parameters = live.registration;
-  parameters.threads = idle_cores_.threadsFor(parameters.threads);
+  parameters.threads = c_.idle_cores->threadsFor(parameters.threads);
   registration->setParameters(parameters);
   // Beyond max_source_points the core aligns an unbiased subsample (source_budget.hpp); a
   // swapped alignment still indexes the whole dense source as its target.

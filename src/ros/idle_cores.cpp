@@ -49,6 +49,11 @@ bool readOwn(uint64_t* jiffies) {
 }  // namespace
 
 double IdleCores::sample(double min_window) {
+  std::lock_guard<std::mutex> lock(mutex_);
+  return sampleLocked(min_window);
+}
+
+double IdleCores::sampleLocked(double min_window) {
   const int cores = onlineCores();
   uint64_t total = 0, idle = 0, own = 0;
   if (!readMachine(&total, &idle) || !readOwn(&own)) return cores;
@@ -75,7 +80,7 @@ double IdleCores::sample(double min_window) {
 }
 
 int IdleCores::threadsFor(int wanted, double min_window) {
-  const double idle = sample(min_window);
+  const double idle = sample(min_window);  // locks
   return std::clamp(static_cast<int>(std::floor(idle + 0.25)), 1, std::max(wanted, 1));
 }
 

@@ -28,8 +28,11 @@ void MapAlignmentNodelet::onInit() {
   });
   // force_update on our own wall-clock timer: Updater::update() compares against ROS time and
   // would fall silent for the length of a bag after a loop jumps simulated time back.
-  diagnostics_timer_ = node.createWallTimer(
-      ros::WallDuration(1.0), [this](const ros::WallTimerEvent&) { diagnostics_->force_update(); });
+  diagnostics_timer_ =
+      node.createWallTimer(ros::WallDuration(1.0), [this](const ros::WallTimerEvent&) {
+        idle_cores_.sample();
+        diagnostics_->force_update();
+      });
 
   settings_ok_ = readNodeSettings(private_node, &settings_, &settings_error_);
   if (!settings_ok_) {
@@ -51,11 +54,10 @@ void MapAlignmentNodelet::onInit() {
   const std::string sparse_topic = node.resolveName("sparse_cloud");
   keeper_ = std::make_unique<DenseMapKeeper>(settings_.dense_is_target,
                                              settings_.expected_dense_frame, dense_topic, &status_,
-                                             nodeletLog(),
-                                             [this] { return liveParameters(); });
-  job_ = std::make_unique<AlignmentJob>(AlignmentJobContext{
-      &settings_, tf_buffer_.get(), publisher_.get(), edges_.get(), &status_, keeper_.get(),
-      nodeletLog(), sparse_topic, dense_topic});
+                                             nodeletLog(), [this] { return liveParameters(); });
+  job_ = std::make_unique<AlignmentJob>(
+      AlignmentJobContext{&settings_, tf_buffer_.get(), publisher_.get(), edges_.get(), &status_,
+                          keeper_.get(), &idle_cores_, nodeletLog(), sparse_topic, dense_topic});
   worker_ = std::thread(&MapAlignmentNodelet::workerLoop, this);
   dense_subscriber_ = node.subscribe("dense_cloud", 2, &MapAlignmentNodelet::denseCallback, this);
   sparse_subscriber_ =

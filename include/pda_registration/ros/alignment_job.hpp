@@ -33,6 +33,7 @@ struct AlignmentJobContext {
   EdgeBroadcaster* edges;
   AlignmentStatus* status;
   DenseMapKeeper* keeper;
+  IdleCores* idle_cores;
   NodeletLog log;
   std::string sparse_topic, dense_topic;
 };
@@ -65,7 +66,6 @@ class AlignmentJob {
   AlignmentJobContext c_;
   PdaRegistration sparse_target_;  // the registration when the sparse cloud is the target
   ros::WallTime last_spacing_;
-  IdleCores idle_cores_;
 };
 
 }  // namespace pda_registration
