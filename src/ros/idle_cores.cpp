@@ -50,6 +50,10 @@ bool readOwn(uint64_t* jiffies) {
 
 double IdleCores::sample(double min_window) {
   std::lock_guard<std::mutex> lock(mutex_);
+  return sampleLocked(min_window);
+}
+
+double IdleCores::sampleLocked(double min_window) {
   const int cores = onlineCores();
   uint64_t total = 0, idle = 0, own = 0;
   if (!readMachine(&total, &idle) || !readOwn(&own)) return cores;
@@ -75,12 +79,8 @@ double IdleCores::sample(double min_window) {
   return idle_cores_;
 }
 
-int IdleCores::threadsFor(int wanted) {
-  double idle;
-  {
-    std::lock_guard<std::mutex> lock(mutex_);
-    idle = idle_cores_ < 0.0 ? onlineCores() : idle_cores_;
-  }
+int IdleCores::threadsFor(int wanted, double min_window) {
+  const double idle = sample(min_window);  // locks
   return std::clamp(static_cast<int>(std::floor(idle + 0.25)), 1, std::max(wanted, 1));
 }
 

@@ -21,12 +21,13 @@ class IdleCores {
   /// second (the nodelet's diagnostics timer), the value covers the last one to two seconds. Before
   /// the first full window (or where /proc is unreadable) this is the number of cores.
   double sample(double min_window = 1.0);
-  /// At most `wanted`, at least 1: the whole idle cores of the last sample (a team member on a
-  /// shared core stalls every barrier; 0.75 of a core counts as one). Reads no /proc file: the
-  /// timer's samples keep the value current.
-  int threadsFor(int wanted);
+  /// At most `wanted`, at least 1: the whole idle cores (a team member on a shared core stalls
+  /// every barrier; 0.75 of a core counts as one).
+  int threadsFor(int wanted, double min_window = 1.0);
 
  private:
+  double sampleLocked(double min_window);
+
   std::mutex mutex_;  // a timer samples, the alignment thread asks
   bool have_start_ = false;
   uint64_t start_total_ = 0, start_idle_ = 0;  // /proc/stat, all cores [jiffies]
