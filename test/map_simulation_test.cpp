@@ -99,6 +99,30 @@ TEST(MapSimulation, SameSeedGivesIdenticalMapsAndAnotherSeedDifferentOnes) {
   EXPECT_TRUE(samePoints(single.sparse, a.sparse));
 }
 
+// A noise seed draws the sensor noise again on the same scene: same poses and ground truth,
+// other points; the noise seed equal to the layout seed is what the layout seed alone gives.
+TEST(MapSimulation, NoiseSeedRedrawsOnlyTheSensorNoise) {
+  const SimulatedMaps a = simulateMaps(smallOptions(11));
+  MapSimulationOptions options = smallOptions(11);
+  options.noise_seed = 2;
+  const SimulatedMaps b = simulateMaps(options);
+  options.noise_seed = 11;
+  const SimulatedMaps c = simulateMaps(options);
+  EXPECT_TRUE(a.T_target_source.isApprox(b.T_target_source, 0.0));
+  ASSERT_EQ(a.velodyne_poses.size(), b.velodyne_poses.size());
+  for (size_t i = 0; i < a.velodyne_poses.size(); ++i)
+    EXPECT_TRUE(a.velodyne_poses[i].isApprox(b.velodyne_poses[i], 0.0));
+  EXPECT_FALSE(samePoints(a.dense, b.dense));
+  EXPECT_FALSE(samePoints(a.sparse, b.sparse));
+  // The same scene seen again: about as many points (only dropouts and voxels differ).
+  EXPECT_NEAR(static_cast<double>(b.sparse.size()), static_cast<double>(a.sparse.size()),
+              0.02 * a.sparse.size());
+  EXPECT_NEAR(static_cast<double>(b.dense.size()), static_cast<double>(a.dense.size()),
+              0.02 * a.dense.size());
+  EXPECT_TRUE(samePoints(a.dense, c.dense));
+  EXPECT_TRUE(samePoints(a.sparse, c.sparse));
+}
+
 TEST(MapSimulation, SparseMapIsInItsOwnFrameAndDistortionOnlyWarpsTheDenseMap) {
   MapSimulationOptions options = smallOptions(13);
   options.kinect.noise = options.velodyne.noise = false;

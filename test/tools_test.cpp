@@ -5,6 +5,7 @@
 
 #include <array>
 #include <cstdio>
+#include <filesystem>
 #include <fstream>
 #include <regex>
 #include <sstream>
@@ -208,9 +209,9 @@ TEST(PdaAlign, AlignsARealCaseAndReportsErrorsAgainstGroundTruth) {
   EXPECT_EQ(lineCount(run.out), 1u);
   EXPECT_NE(run.out.find("\"method\":\"pda\""), std::string::npos);
   EXPECT_NE(run.out.find("\"converged\":true"), std::string::npos);
-  for (const char* key : {"time_ms", "runs", "sigma", "inlier_fraction", "mean_distance",
-                          "rot_err_deg", "trans_err_m", "peak_rss_mb", "expected_error_m",
-                          "expected_error_deg"}) {
+  for (const char* key :
+       {"time_ms", "runs", "sigma", "inlier_fraction", "mean_distance", "rot_err_deg",
+        "trans_err_m", "peak_rss_mb", "expected_error_m", "expected_error_deg"}) {
     EXPECT_FALSE(std::isnan(jsonNumber(run.out, key))) << key << " missing in " << run.out;
   }
   // The covariance's expected error: positive, and of the size of the errors made (room_scan's
@@ -280,9 +281,9 @@ std::vector<std::string> tableCells(const std::string& row) {
 }
 
 TEST(PdaCovarianceCheck, FactoryErrorIsWithinAThirdToThreeTimesSigma) {
-  const CommandRun run = runCommand(PDA_COVARIANCE_CHECK_BINARY,
-                                    "--data " + testing_support::sharedDataDirectory() +
-                                        " --cases factory_p64 --trials 5 --bounds 0.3:3");
+  const CommandRun run =
+      runCommand(PDA_COVARIANCE_CHECK_BINARY, "--data " + testing_support::sharedDataDirectory() +
+                                                  " --cases factory_p64 --trials 5 --bounds 0.3:3");
   ASSERT_EQ(run.exit_code, 0) << run.err;
   const size_t start = run.out.find("| factory_p64 |");
   ASSERT_NE(start, std::string::npos) << run.out;
@@ -298,10 +299,32 @@ TEST(PdaCovarianceCheck, FactoryErrorIsWithinAThirdToThreeTimesSigma) {
   EXPECT_EQ(cells[9], "yes");
 }
 
+// Folders NAME_draw1, NAME_draw2 (noise draws of one scene) are one row NAME over all their
+// trials; here two links to factory_p64, 2 perturbations each.
+TEST(PdaCovarianceCheck, PoolDrawsMakesOneRowOfAllDraws) {
+  const std::string data = temporaryPath("covariance_draws");
+  std::filesystem::remove_all(data);
+  std::filesystem::create_directories(data);
+  const std::string factory = testing_support::sharedDataDirectory() + "/factory_p64";
+  std::filesystem::create_directory_symlink(factory, data + "/factory_draw1");
+  std::filesystem::create_directory_symlink(factory, data + "/factory_draw2");
+  const CommandRun run =
+      runCommand(PDA_COVARIANCE_CHECK_BINARY, "--data " + data + " --pool-draws --trials 2");
+  std::filesystem::remove_all(data);
+  ASSERT_EQ(run.exit_code, 0) << run.err;
+  EXPECT_EQ(run.out.find("factory_draw"), std::string::npos) << run.out;
+  const size_t start = run.out.find("| factory |");
+  ASSERT_NE(start, std::string::npos) << run.out;
+  const std::vector<std::string> cells =
+      tableCells(run.out.substr(start, run.out.find('\n', start) - start));
+  ASSERT_EQ(cells.size(), 11u) << run.out;
+  EXPECT_EQ(cells[2], "4/4");
+}
+
 TEST(PdaCovarianceCheck, BadBoundsAreOneLineAndExitCodeTwo) {
-  const CommandRun run = runCommand(PDA_COVARIANCE_CHECK_BINARY,
-                                    "--data " + testing_support::sharedDataDirectory() +
-                                        " --bounds 2:1");
+  const CommandRun run =
+      runCommand(PDA_COVARIANCE_CHECK_BINARY,
+                 "--data " + testing_support::sharedDataDirectory() + " --bounds 2:1");
   EXPECT_EQ(run.exit_code, 2);
   EXPECT_EQ(lineCount(run.err), 1u);
   EXPECT_NE(run.err.find("pda_covariance_check: error: --bounds"), std::string::npos) << run.err;

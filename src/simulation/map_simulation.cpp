@@ -71,9 +71,9 @@ std::vector<Eigen::Isometry3d> denseLidarPoses(const SimulatedMaps& maps,
                                  point.heading + 0.3, 0.0));
     } else {
       const double x = -25.0 + 50.0 * (i + 0.5) / options.dense_revolutions;
-      poses.push_back(sensorPose(Eigen::Vector3d(x, outdoor.road_stops[0].y() + 1.5,
-                                                 kOutdoorDenseLidarHeight),
-                                 0.1 * i, 0.0));
+      poses.push_back(
+          sensorPose(Eigen::Vector3d(x, outdoor.road_stops[0].y() + 1.5, kOutdoorDenseLidarHeight),
+                     0.1 * i, 0.0));
     }
   }
   return poses;
@@ -85,7 +85,7 @@ PointList kinectScan(const SimulatedMaps& maps, const std::vector<Eigen::Isometr
   PointList scan;
   for (size_t i = 0; i < poses.size(); ++i) {
     const PointList frame = simulateKinectFrame(maps.scene, poses[i], options.kinect,
-                                                streamSeed(options.seed, stream, i));
+                                                streamSeed(noiseSeed(options), stream, i));
     scan.insert(scan.end(), frame.begin(), frame.end());
   }
   return scan;
@@ -117,6 +117,10 @@ Eigen::Isometry3d transformFromYawPitchRoll(double yaw_deg, double pitch_deg, do
   return T;
 }
 
+uint64_t noiseSeed(const MapSimulationOptions& options) {
+  return options.noise_seed != 0 ? options.noise_seed : options.seed;
+}
+
 uint64_t streamSeed(uint64_t seed, uint64_t stream, uint64_t index) {
   return mix(mix(mix(seed) ^ stream) ^ index);
 }
@@ -133,8 +137,8 @@ SimulatedMaps simulateMaps(const MapSimulationOptions& options) {
     outdoor = makeOutdoorScene(options.seed);
     maps.scene = outdoor.scene;
   }
-  maps.T_target_source_unwarped = transformFromYawPitchRoll(
-      options.yaw_deg, options.pitch_deg, options.roll_deg, options.translation);
+  maps.T_target_source_unwarped = transformFromYawPitchRoll(options.yaw_deg, options.pitch_deg,
+                                                            options.roll_deg, options.translation);
 
   std::vector<Eigen::Isometry3d> lidar_poses = sparseLidarPoses(maps, options, outdoor);
   if (options.same_pose) lidar_poses.resize(1);  // one scan, re-observed by the same sensor
@@ -149,15 +153,14 @@ SimulatedMaps simulateMaps(const MapSimulationOptions& options) {
                   : kinectTrajectory(maps.office, options.kinect_frames);
     dense = kinectScan(maps, maps.kinect_poses, options, kKinectStream);
   } else {
-    maps.dense_lidar_poses =
-        options.same_pose ? std::vector<Eigen::Isometry3d>(options.dense_revolutions,
-                                                           lidar_poses.front())
-                          : denseLidarPoses(maps, options, outdoor);
+    maps.dense_lidar_poses = options.same_pose ? std::vector<Eigen::Isometry3d>(
+                                                     options.dense_revolutions, lidar_poses.front())
+                                               : denseLidarPoses(maps, options, outdoor);
     const VelodyneParameters dense_lidar = denseLidar(options);
     for (size_t i = 0; i < maps.dense_lidar_poses.size(); ++i) {
       const PointList revolution =
           simulateVelodyneRevolution(maps.scene, maps.dense_lidar_poses[i], dense_lidar,
-                                     streamSeed(options.seed, kDenseLidarStream, i));
+                                     streamSeed(noiseSeed(options), kDenseLidarStream, i));
       dense.insert(dense.end(), revolution.begin(), revolution.end());
     }
   }
@@ -170,15 +173,16 @@ SimulatedMaps simulateMaps(const MapSimulationOptions& options) {
   PointList sparse_in_scene;
   if (fragments) {
     lidar_poses.clear();
-    const std::vector<Eigen::Isometry3d> poses = kinectTrajectory(
-        maps.office, options.kinect_frames, 1.0 - kFragmentLength, 1.0);
+    const std::vector<Eigen::Isometry3d> poses =
+        kinectTrajectory(maps.office, options.kinect_frames, 1.0 - kFragmentLength, 1.0);
     sparse_in_scene = voxelDownsample(kinectScan(maps, poses, options, kSparseKinectStream),
                                       options.dense_voxel_size);
     for (const Point& p : sparse_in_scene) maps.sparse.push_back(T_source_target * p);
   }
   for (size_t i = 0; i < lidar_poses.size(); ++i) {
-    const PointList revolution = simulateVelodyneRevolution(
-        maps.scene, lidar_poses[i], sparse_lidar, streamSeed(options.seed, kVelodyneStream, i));
+    const PointList revolution =
+        simulateVelodyneRevolution(maps.scene, lidar_poses[i], sparse_lidar,
+                                   streamSeed(noiseSeed(options), kVelodyneStream, i));
     sparse_in_scene.insert(sparse_in_scene.end(), revolution.begin(), revolution.end());
     for (const Point& p : revolution) maps.sparse.push_back(T_source_target * p);
     maps.velodyne_poses.push_back(T_source_target * lidar_poses[i]);

@@ -4,7 +4,13 @@
 // covariance's translation and rotation blocks. Prints a markdown table of the medians of
 // |error| / sigma over the converged trials (1 is a calibrated covariance; above 1 it is
 // over-confident) and can write every trial as CSV. Exit 2 on bad arguments or unreadable data.
+//
+// The perturbations of one pair converge to nearly the same pose, so one pair's row is one draw of
+// the error. --pool-draws pools folders NAME_draw1, NAME_draw2, ... (one simulated scene with
+// independent draws of its sensor noise: pda_simulate --noise-seed) into one row NAME, whose
+// median is then over independent errors.
 
+#include <algorithm>
 #include <cmath>
 #include <fstream>
 #include <iomanip>
@@ -34,11 +40,15 @@ const char* kUsage =
     "  --seed N               first perturbation seed (1)\n"
     "  --bounds LO:HI         the accepted range of median |error| / sigma (0.5:2)\n"
     "  --csv FILE             write every trial\n"
-    "  The error is taken in the covariance's own convention: translation t_est - t_true, rotation\n"
+    "  --pool-draws           one row for the folders NAME_draw1, NAME_draw2, ... (independent\n"
+    "                         noise draws of one scene): the median over all their trials\n"
+    "  The error is taken in the covariance's own convention: translation t_est - t_true, "
+    "rotation\n"
     "  the angle of R_est R_true^T; sigma is sqrt(trace) of the matching 3x3 block.\n";
 
 struct Trial {
   std::string case_name;
+  std::string row;  // the table row it counts in: the case, or its scene with --pool-draws
   PerturbationLevel level;
   int seed = 0;
   bool converged = false;
@@ -65,11 +75,21 @@ std::string ratioText(double ratio) {
   return text.str();
 }
 
+// "NAME_drawK" -> "NAME" (K digits); any other name is its own row.
+std::string pooledName(const std::string& name) {
+  const size_t at = name.rfind("_draw");
+  if (at == std::string::npos || at == 0 || at + 5 == name.size()) return name;
+  for (size_t i = at + 5; i < name.size(); ++i) {
+    if (name[i] < '0' || name[i] > '9') return name;
+  }
+  return name.substr(0, at);
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
-  CommandLine cl =
-      commandLineWithSettings({"data", "cases", "levels", "trials", "seed", "bounds", "csv"}, {});
+  CommandLine cl = commandLineWithSettings(
+      {"data", "cases", "levels", "trials", "seed", "bounds", "csv"}, {"pool-draws"});
   MethodSettings settings;
   const int exit_code =
       startRegistrationTool("pda_covariance_check", kUsage, argc, argv, &cl, &settings);
@@ -94,6 +114,12 @@ int main(int argc, char** argv) {
   std::vector<std::string> cases = splitList(cl.text("cases"), ',');
   if (cases.empty()) cases = listCaseFolders(data);
   if (cases.empty()) return fail("no cases found in '" + data + "'");
+  const bool pool = cl.has("pool-draws");
+  std::vector<std::string> rows;  // in the order of their first case
+  for (const std::string& name : cases) {
+    const std::string row = pool ? pooledName(name) : name;
+    if (std::find(rows.begin(), rows.end(), row) == rows.end()) rows.push_back(row);
+  }
 
   std::vector<Trial> all;
   for (const std::string& name : cases) {
@@ -105,10 +131,10 @@ int main(int argc, char** argv) {
     const Eigen::Isometry3d truth = loaded.T_target_source;
     for (const PerturbationLevel& level : levels) {
       for (int t = 0; t < trials; ++t) {
-        Trial trial{name, level, first_seed + t};
+        Trial trial{name, pool ? pooledName(name) : name, level, first_seed + t};
         const Eigen::Isometry3d initial =
-            truth * randomPerturbation(level.degrees, level.metres,
-                                       static_cast<uint64_t>(trial.seed));
+            truth *
+            randomPerturbation(level.degrees, level.metres, static_cast<uint64_t>(trial.seed));
         const RegistrationResult r =
             runMethod("pda", loaded.target, loaded.source, initial, settings).result;
         trial.converged = r.converged;
@@ -144,13 +170,15 @@ int main(int argc, char** argv) {
             << low << ", " << high << "] | covariance time |\n"
             << "|---|---|---|---|---|---|---|---|---|---|---|\n";
   const double kDeg = 180.0 / M_PI;
-  for (const std::string& name : cases) {
+  for (const std::string& name : rows) {
     for (const PerturbationLevel& level : levels) {
       std::vector<double> te, ts, re, rs, share;
+      size_t tried = 0;
       for (const Trial& t : all) {
-        if (t.case_name != name || t.level.degrees != level.degrees ||
-            t.level.metres != level.metres || !t.converged)
+        if (t.row != name || t.level.degrees != level.degrees || t.level.metres != level.metres)
           continue;
+        ++tried;
+        if (!t.converged) continue;
         te.push_back(t.translation_error);
         ts.push_back(t.translation_sigma);
         re.push_back(t.rotation_error);
@@ -162,12 +190,12 @@ int main(int argc, char** argv) {
       auto within = [&](double ratio) { return ratio >= low && ratio <= high; };
       std::ostringstream row;
       row << std::fixed << "| " << name << " | " << std::setprecision(0) << level.degrees << "°/"
-          << std::setprecision(2) << level.metres << " m | " << te.size() << "/" << trials << " | "
+          << std::setprecision(2) << level.metres << " m | " << te.size() << "/" << tried << " | "
           << std::setprecision(3) << 100.0 * median(te) << " | " << 100.0 * median(ts) << " | "
           << ratioText(t_ratio) << " | " << std::setprecision(4) << kDeg * median(re) << " | "
-          << kDeg * median(rs) << " | "
-          << ratioText(r_ratio) << " | " << (within(t_ratio) && within(r_ratio) ? "yes" : "**no**")
-          << " | " << std::setprecision(1) << 100.0 * median(share) << " % |\n";
+          << kDeg * median(rs) << " | " << ratioText(r_ratio) << " | "
+          << (within(t_ratio) && within(r_ratio) ? "yes" : "**no**") << " | "
+          << std::setprecision(1) << 100.0 * median(share) << " % |\n";
       std::cout << row.str();
     }
   }

@@ -35,6 +35,8 @@ const char* kUsage =
     "  --bag FILE                write a rosbag: /dense_map, /sparse_map, /tf (perturbed seed\n"
     "                            dense_map -> sparse_map), /ground_truth\n"
     "  --seed N                  scene layout and sensor noise (1)\n"
+    "  --noise-seed N            another draw of the sensor noise alone: the same scene,\n"
+    "                            poses and ground truth (default: from --seed)\n"
     "  --scene office|outdoor    office (default), or a ground-dominated car park with a few\n"
     "                            buildings, parked cars, poles and trees (ranges to 80 m+)\n"
     "  --dense-sensor S          kinect (office default), vlp16 or lidar64 (outdoor default):\n"
@@ -75,10 +77,17 @@ int usageError(const std::string& message) { return reportError("pda_simulate", 
 }  // namespace
 
 int main(int argc, char** argv) {
-  CommandLine cl({"output", "bag", "seed", "scene", "dense-sensor", "sparse-sensor", "dense-revolutions",
-                  "kinect-frames", "velodyne-revolutions", "dense-voxel",
-                  "yaw-deg", "pitch-deg", "roll-deg", "translation", "distortion", "seed-error-deg",
-                  "seed-error-m", "dense-messages", "sparse-messages", "tf-rate"},
+  CommandLine cl({"output",         "bag",
+                  "seed",           "noise-seed",
+                  "scene",          "dense-sensor",
+                  "sparse-sensor",  "dense-revolutions",
+                  "kinect-frames",  "velodyne-revolutions",
+                  "dense-voxel",    "yaw-deg",
+                  "pitch-deg",      "roll-deg",
+                  "translation",    "distortion",
+                  "seed-error-deg", "seed-error-m",
+                  "dense-messages", "sparse-messages",
+                  "tf-rate"},
                  {"no-noise", "same-pose", "help"});
   if (!cl.parse(argc, argv)) return usageError(cl.error());
   if (cl.has("help")) {
@@ -89,11 +98,12 @@ int main(int argc, char** argv) {
 
   MapSimulationOptions options;
   MapBagOptions bag_options;
-  int seed = 1;
+  int seed = 1, noise_seed = 0;
   double seed_error_deg = 3.0, seed_error_m = 0.15;
   std::vector<double> translation = {options.translation.x(), options.translation.y(),
                                      options.translation.z()};
   const bool flags_ok = cl.integer("seed", &seed, 0, 2147483647) &&
+                        cl.integer("noise-seed", &noise_seed, 1, 2147483647) &&
                         cl.integer("kinect-frames", &options.kinect_frames, 1, 1000) &&
                         cl.integer("velodyne-revolutions", &options.velodyne_revolutions, 1, 100) &&
                         cl.number("dense-voxel", &options.dense_voxel_size, 0.0, 1.0) &&
@@ -139,6 +149,7 @@ int main(int argc, char** argv) {
   if (translation.size() != 3)
     return usageError("--translation: expected X,Y,Z (e.g. 1.5,-0.8,0.1)");
   options.seed = static_cast<uint64_t>(seed);
+  options.noise_seed = static_cast<uint64_t>(noise_seed);
   options.translation = Eigen::Vector3d(translation[0], translation[1], translation[2]);
   options.kinect.noise = options.velodyne.noise = !cl.has("no-noise");
 
@@ -198,7 +209,9 @@ int main(int argc, char** argv) {
   }
 
   JsonLine json;
-  json.add("seed", seed).add("scene_primitives", maps.scene.primitiveCount());
+  json.add("seed", seed)
+      .add("noise_seed", static_cast<int>(noiseSeed(options)))
+      .add("scene_primitives", maps.scene.primitiveCount());
   json.add("scene", scene).add("dense_sensor", dense_sensor).add("same_pose", options.same_pose);
   json.add("dense_raw_points", maps.dense_raw_points);
   json.add("dense_points", maps.dense.size());

@@ -6,8 +6,8 @@
 // The dense map frame is the scene frame (floor at z = 0); the sparse map frame is placed so
 // that this holds. Without distortion the ground truth T_target_source is that transform; with
 // distortion the dense map is warped non-rigidly and the ground truth is the best rigid fit of
-// the warp over the overlap (warp_rigid_fit.hpp) times it. Deterministic per seed (and
-// independent of the thread count).
+// the warp over the overlap (warp_rigid_fit.hpp) times it. Deterministic per seed and noise seed
+// (and independent of the thread count).
 
 #include <Eigen/Geometry>
 #include <cstdint>
@@ -39,7 +39,7 @@ enum class DenseSensor {
 
 /// What builds the sparse map (the source).
 enum class SparseSensor {
-  kVlp16,   ///< revolutions of a VLP-16 (or, with same_pose, the dense lidar cut to +-15 deg)
+  kVlp16,  ///< revolutions of a VLP-16 (or, with same_pose, the dense lidar cut to +-15 deg)
   /// A second hand-held Kinect fragment (office only): the dense map is the Kinect scan of the
   /// first 60 % of the walkway loop, the source the scan of the last 60 %, both on the same voxel
   /// grid. They overlap on two fifths of the loop: the RGB-D fragment pairs of indoor mapping.
@@ -47,7 +47,10 @@ enum class SparseSensor {
 };
 
 struct MapSimulationOptions {
-  uint64_t seed = 1;               ///< scene layout and sensor noise
+  uint64_t seed = 1;  ///< scene layout (and sensor noise, unless noise_seed is set)
+  /// Sensor noise alone: the same scene, poses and ground truth with another draw of the range
+  /// and depth noise (independent draws of one case, for calibration). 0 = from `seed`.
+  uint64_t noise_seed = 0;
   SceneKind scene = SceneKind::kOffice;
   DenseSensor dense_sensor = DenseSensor::kKinect;
   SparseSensor sparse_sensor = SparseSensor::kVlp16;
@@ -83,10 +86,10 @@ struct SimulatedMaps {
   Eigen::Isometry3d T_target_source = Eigen::Isometry3d::Identity();
   /// The chosen rigid transform, p_scene = T * p_sparse: the warp's fixed point.
   Eigen::Isometry3d T_target_source_unwarped = Eigen::Isometry3d::Identity();
-  WarpRigidFit warp_fit;  ///< identity, no points, without distortion
-  std::vector<Eigen::Isometry3d> kinect_poses;    ///< T_dense_camera, before distortion
+  WarpRigidFit warp_fit;                             ///< identity, no points, without distortion
+  std::vector<Eigen::Isometry3d> kinect_poses;       ///< T_dense_camera, before distortion
   std::vector<Eigen::Isometry3d> dense_lidar_poses;  ///< T_dense_lidar (lidar dense sensors)
-  std::vector<Eigen::Isometry3d> velodyne_poses;  ///< T_sparse_lidar
+  std::vector<Eigen::Isometry3d> velodyne_poses;     ///< T_sparse_lidar
   size_t dense_raw_points = 0;  ///< accumulated depth points before the voxel grid
 };
 
@@ -99,6 +102,10 @@ Eigen::Isometry3d transformFromYawPitchRoll(double yaw_deg, double pitch_deg, do
 
 /// A well-mixed seed for one noise stream (sensor, frame) derived from the simulation seed.
 uint64_t streamSeed(uint64_t seed, uint64_t stream, uint64_t index);
+
+/// The seed the sensor noise streams derive from: noise_seed, or the layout seed when it is 0
+/// (so a simulation without a noise seed is what it always was).
+uint64_t noiseSeed(const MapSimulationOptions& options);
 
 SimulatedMaps simulateMaps(const MapSimulationOptions& options);
 
