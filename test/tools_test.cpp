@@ -304,7 +304,8 @@ TEST(PdaCovarianceCheck, FactoryErrorIsWithinAThirdToThreeTimesSigma) {
 }
 
 // Folders NAME_draw1, NAME_draw2 (noise draws of one scene) are one row NAME over all their
-// trials; here two links to factory_p64, 2 perturbations each.
+// trials, and the last line pools every trial; here two links to factory_p64, 2 perturbations
+// each.
 TEST(PdaCovarianceCheck, PoolDrawsMakesOneRowOfAllDraws) {
   const std::string data = temporaryPath("covariance_draws");
   std::filesystem::remove_all(data);
@@ -320,6 +321,8 @@ TEST(PdaCovarianceCheck, PoolDrawsMakesOneRowOfAllDraws) {
   const std::vector<std::string> cells = tableRow(run.out, "factory");
   ASSERT_EQ(cells.size(), 11u) << run.out;
   EXPECT_EQ(cells[2], "4/4");
+  // The pooled line counts the same trials.
+  EXPECT_NE(run.out.find("Pooled over 4 converged trials"), std::string::npos) << run.out;
 }
 
 TEST(PdaCovarianceCheck, BadBoundsAreOneLineAndExitCodeTwo) {

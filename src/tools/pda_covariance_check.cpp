@@ -199,5 +199,24 @@ int main(int argc, char** argv) {
       std::cout << row.str();
     }
   }
+  // Every converged trial of the run at once: the calibration of the whole set, which one row
+  // (a handful of draws) can only hint at.
+  std::vector<double> t_ratios, r_ratios;
+  for (const Trial& t : all) {
+    if (!t.converged || !(t.translation_sigma > 0.0) || !(t.rotation_sigma > 0.0)) continue;
+    t_ratios.push_back(t.translation_error / t.translation_sigma);
+    r_ratios.push_back(t.rotation_error / t.rotation_sigma);
+  }
+  if (!t_ratios.empty()) {
+    auto rms = [](const std::vector<double>& v) {
+      double sum = 0.0;
+      for (double x : v) sum += x * x;
+      return std::sqrt(sum / static_cast<double>(v.size()));
+    };
+    std::cout << "\nPooled over " << t_ratios.size() << " converged trials: root mean square of "
+              << "|error| / sigma " << ratioText(rms(t_ratios)) << " (translation), "
+              << ratioText(rms(r_ratios)) << " (rotation); medians " << ratioText(median(t_ratios))
+              << ", " << ratioText(median(r_ratios)) << ".\n";
+  }
   return 0;
 }
