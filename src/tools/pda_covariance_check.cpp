@@ -42,9 +42,8 @@ const char* kUsage =
     "  --csv FILE             write every trial\n"
     "  --pool-draws           one row for the folders NAME_draw1, NAME_draw2, ... (independent\n"
     "                         noise draws of one scene): the median over all their trials\n"
-    "  The error is taken in the covariance's own convention: translation t_est - t_true, "
-    "rotation\n"
-    "  the angle of R_est R_true^T; sigma is sqrt(trace) of the matching 3x3 block.\n";
+    "  The error is taken in the covariance's own convention: translation t_est - t_true,\n"
+    "  rotation the angle of R_est R_true^T; sigma is sqrt(trace) of the matching 3x3 block.\n";
 
 struct Trial {
   std::string case_name;
