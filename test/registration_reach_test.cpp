@@ -63,7 +63,7 @@ TEST(HonestVerdict, ResidualsAsWideAsTheSearchAreUnresolved) {
 }
 
 // Two hand-held RGB-D fragments of one office, overlapping on two fifths of the loop, both dense
-// (~300k points each): the source budget aligns 30000 of the source's points.
+// (~300k points each): the source budget aligns 15000 of the source's points.
 TEST(Reach, RgbdFragmentsAlignWithDefaultsFromTenDegrees) {
   MapSimulationOptions options;
   options.seed = 3;

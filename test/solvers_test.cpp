@@ -7,12 +7,14 @@
 
 #include <Eigen/Eigenvalues>
 #include <random>
+#include <vector>
 
 #include "pda_registration/core/ceres_solver.hpp"
 #include "pda_registration/core/closed_form_solver.hpp"
 #include "pda_registration/core/gauss_newton_solver.hpp"
 #include "pda_registration/core/pose_covariance.hpp"
 #include "pda_registration/core/run_extrapolation.hpp"
+#include "pda_registration/core/run_rest.hpp"
 
 namespace pda_registration {
 namespace {
@@ -139,7 +141,7 @@ int runsToConverge(double rho, bool extrapolate, double* final_error) {
   Eigen::Isometry3d solution = Eigen::Isometry3d::Identity();
   solution.linear() = Eigen::AngleAxisd(0.3, Eigen::Vector3d(1, 2, 3).normalized()).matrix();
   solution.translation() = Eigen::Vector3d(1.0, -2.0, 0.5);
-  RunExtrapolation extrapolation(Point(5.0, 0.0, 0.0), 3.0);
+  RunExtrapolation extrapolation(PoseStep(Point(5.0, 0.0, 0.0), 3.0));
   Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
   for (int run = 1; run <= 1000; ++run) {
     // One run: the remaining motion to the solution, scaled by 1 - rho (about the origin).
@@ -171,11 +173,55 @@ TEST(RunExtrapolation, CutsTheRunsOfALinearlyConvergingIteration) {
 }
 
 TEST(RunExtrapolation, LeavesTurningStepsAlone) {
-  pda_registration::RunExtrapolation extrapolation(pda_registration::Point::Zero(), 1.0);
+  pda_registration::RunExtrapolation extrapolation(
+      pda_registration::PoseStep(pda_registration::Point::Zero(), 1.0));
   Eigen::Isometry3d a = Eigen::Isometry3d::Identity(), b = a, c = a;
   b.translation() = Eigen::Vector3d(0.1, 0, 0);
   c.translation() = Eigen::Vector3d(0.05, 0, 0);  // turned back
   EXPECT_TRUE(extrapolation.next(a, b, 1e-6, 1e9).isApprox(b));
   EXPECT_TRUE(extrapolation.next(b, c, 1e-6, 1e9).isApprox(c));
   EXPECT_EQ(extrapolation.extrapolations(), 0);
+}
+
+// The rest test (run_rest.hpp): runs that cycle between two poses come back on themselves and
+// are at rest; a slide of equally small steps one way, and a slide that zigzags, are not.
+namespace {
+Eigen::Isometry3d shifted(double x, double y) {
+  Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
+  T.translation() = Eigen::Vector3d(x, y, 0.0);
+  return T;
+}
+// Feeds runs ending at `xs`/`ys` (starting at the origin); returns the run at which the test
+// first says "came back", 0 if never.
+int restAt(const std::vector<double>& xs, const std::vector<double>& ys) {
+  pda_registration::RunRest rest(pda_registration::PoseStep(pda_registration::Point::Zero(), 1.0));
+  Eigen::Isometry3d before = Eigen::Isometry3d::Identity();
+  for (size_t i = 0; i < xs.size(); ++i) {
+    const Eigen::Isometry3d after = shifted(xs[i], ys[i]);
+    if (rest.cameBack(before, after)) return static_cast<int>(i) + 1;
+    before = after;
+  }
+  return 0;
+}
+}  // namespace
+
+TEST(RunRest, ACycleBetweenTwoPosesIsAtRest) {
+  std::vector<double> xs, ys;
+  for (int i = 0; i < 20; ++i) {
+    xs.push_back(i % 2 ? 0.0005 : 0.0);  // 0.5 mm there and back, as room_scan on a 0.5 m map
+    ys.push_back(0.0);
+  }
+  EXPECT_EQ(restAt(xs, ys), pda_registration::RunRest::kWindow);
+}
+
+TEST(RunRest, ASlideIsNotAtRestHoweverSmallItsSteps) {
+  std::vector<double> xs, ys, zig_xs, zig_ys;
+  for (int i = 1; i <= 40; ++i) {
+    xs.push_back(0.0004 * i);  // 0.4 mm a run one way: the plateau before a collapse
+    ys.push_back(0.0);
+    zig_xs.push_back(0.0004 * i);  // the same slide, zigzagging 0.4 mm across it
+    zig_ys.push_back(i % 2 ? 0.0004 : 0.0);
+  }
+  EXPECT_EQ(restAt(xs, ys), 0);
+  EXPECT_EQ(restAt(zig_xs, zig_ys), 0);
 }

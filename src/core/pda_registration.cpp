@@ -15,6 +15,7 @@
 #include "pda_registration/core/point_filter.hpp"
 #include "pda_registration/core/pose_covariance.hpp"
 #include "pda_registration/core/run_extrapolation.hpp"
+#include "pda_registration/core/run_rest.hpp"
 #include "pda_registration/core/source_budget.hpp"
 
 namespace pda_registration {
@@ -43,17 +44,6 @@ double candidateRadius(const RegistrationParameters& p, double sigma_squared) {
 
 // How far an extrapolated run may start beyond the last run's estimate, in sigmas.
 constexpr double kExtrapolationSigmas = 2.0;
-
-// Steps measured over the source's extent: its centroid's displacement and rotations times its
-// RMS radius.
-RunExtrapolation extrapolationFor(const PointList& source) {
-  Point centroid = Point::Zero();
-  for (const Point& x : source) centroid += x;
-  centroid /= static_cast<double>(source.size());
-  double spread = 0.0;
-  for (const Point& x : source) spread += (x - centroid).squaredNorm();
-  return RunExtrapolation(centroid, std::sqrt(spread / static_cast<double>(source.size())));
-}
 
 }  // namespace
 
@@ -218,7 +208,9 @@ RegistrationResult PdaRegistration::alignUnchecked(const PointList& source_input
   // subset counts as the subset's share. Sliding along a valley of the ground can take the
   // approach many cheap runs (a lidar scan from 10-20 deg away: 40-150 of them).
   double work = 0.0;
-  RunExtrapolation extrapolation = extrapolationFor(source);
+  const PoseStep step_metric = PoseStep::over(source);
+  RunExtrapolation extrapolation(step_metric);
+  RunRest rest(step_metric);
   size_t extrapolated_size = 0;  // the active source's size when the steps were taken
   for (int run = 1; work < p.max_runs; ++run) {
     const PointList& active = stage == Stage::kApproach ? coarse_source : source;
@@ -245,8 +237,11 @@ RegistrationResult PdaRegistration::alignUnchecked(const PointList& source_input
       return result;
     }
     last_run_step = incrementBetween(T_run_start, state.T);
-    const bool stage_done = last_run_step.translation <= 10.0 * p.translation_epsilon &&
-                            last_run_step.rotation <= 10.0 * p.rotation_epsilon;
+    // A stage ends when a run moves less than its epsilons: 10 epsilons before the refine stage,
+    // the epsilons themselves in it.
+    const double stage_scale = stage == Stage::kRefine ? 1.0 : 10.0;
+    const bool stage_done = last_run_step.translation <= stage_scale * p.translation_epsilon &&
+                            last_run_step.rotation <= stage_scale * p.rotation_epsilon;
     // The runs converge linearly, slowly on dense clouds: the next run starts at the steps' tail
     // (run_extrapolation.hpp), at most 2 sigma further, where the candidate sets are still
     // about the same (a longer jump traded lidar scans' reach for speed: car park from 10 deg,
@@ -254,7 +249,7 @@ RegistrationResult PdaRegistration::alignUnchecked(const PointList& source_input
     if (stage_done || active.size() != extrapolated_size) extrapolation.reset();
     extrapolated_size = active.size();
     if (!stage_done && p.max_runs > 1) {
-      state.T = extrapolation.next(T_run_start, state.T, 10.0 * p.translation_epsilon,
+      state.T = extrapolation.next(T_run_start, state.T, stage_scale * p.translation_epsilon,
                                    kExtrapolationSigmas * std::sqrt(state.sigma_squared));
     }
     // An approach that comes to rest with residuals as wide as the search is not at a fit (the
@@ -273,7 +268,8 @@ RegistrationResult PdaRegistration::alignUnchecked(const PointList& source_input
       }
       continue;  // convergence is only declared in the refine stage
     }
-    if (isSmall(last_run_step, p)) {
+    // Converged: a run below the epsilons, or runs that cycle in place (run_rest.hpp).
+    if (isSmall(last_run_step, p) || rest.cameBack(T_run_start, state.T)) {
       result.converged = true;
       break;
     }

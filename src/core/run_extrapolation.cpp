@@ -10,22 +10,10 @@ constexpr double kMaxRatio = 0.95;      // beyond: too slow a shrink to trust it
 constexpr double kMaxFactor = 8.0;      // the extrapolation never exceeds 8 of the last steps
 }  // namespace
 
-RunExtrapolation::RunExtrapolation(const Point& centroid, double length)
-    : centroid_(centroid), length_(length) {}
-
-RunExtrapolation::Step RunExtrapolation::stepBetween(const Eigen::Isometry3d& before,
-                                                     const Eigen::Isometry3d& after) const {
-  const Eigen::AngleAxisd rotation(after.linear() * before.linear().transpose());
-  Step step;
-  step.head<3>() = rotation.angle() * rotation.axis() * length_;
-  step.tail<3>() = after * centroid_ - before * centroid_;
-  return step;
-}
-
 Eigen::Isometry3d RunExtrapolation::next(const Eigen::Isometry3d& before,
                                          const Eigen::Isometry3d& after, double min_step,
                                          double max_move) {
-  const Step step = stepBetween(before, after);
+  const Step step = metric_.between(before, after);
   const double size = step.norm();
   if (!(size > min_step) || !step.allFinite()) {
     have_previous_ = false;
@@ -45,7 +33,7 @@ Eigen::Isometry3d RunExtrapolation::next(const Eigen::Isometry3d& before,
   have_previous_ = false;
   ++extrapolations_;
   const Eigen::AngleAxisd rotation(after.linear() * before.linear().transpose());
-  const Point pivot = after * centroid_;
+  const Point pivot = after * metric_.centroid();
   Eigen::Isometry3d extra = Eigen::Isometry3d::Identity();
   extra.linear() = Eigen::AngleAxisd(factor * rotation.angle(), rotation.axis()).toRotationMatrix();
   extra.translation() = pivot + factor * step.tail<3>() - extra.linear() * pivot;

@@ -87,7 +87,7 @@ struct RegistrationParameters {
   /// subsample of this many (core/source_budget.hpp), so alignment time stays bounded as a
   /// sparse map grows or when the source is itself a dense map; 0 = none. The dense source of a
   /// swapped alignment (alignment_direction.hpp) is still the whole cloud as the target.
-  int max_source_points = 30000;
+  int max_source_points = 15000;
 };
 
 /// Empty string when the parameters are usable, otherwise a one-line explanation.

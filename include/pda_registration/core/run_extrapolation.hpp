@@ -9,15 +9,15 @@
 
 #include <Eigen/Geometry>
 
-#include "pda_registration/core/point_list.hpp"
+#include "pda_registration/core/pose_step.hpp"
 
 namespace pda_registration {
 
 class RunExtrapolation {
  public:
-  /// Steps are compared as (rotation x `length`, displacement of `centroid`): rotations and
-  /// translations weigh as the displacements they cause over a cloud of that size.
-  RunExtrapolation(const Point& centroid, double length);
+  /// Steps are compared in `metric`: rotations and translations weigh as the displacements
+  /// they cause over the source.
+  explicit RunExtrapolation(PoseStep metric) : metric_(std::move(metric)) {}
 
   /// Forget the steps so far (the runs' inputs changed: a new stage).
   void reset() { have_previous_ = false; }
@@ -31,11 +31,9 @@ class RunExtrapolation {
   int extrapolations() const { return extrapolations_; }
 
  private:
-  using Step = Eigen::Matrix<double, 6, 1>;
-  Step stepBetween(const Eigen::Isometry3d& before, const Eigen::Isometry3d& after) const;
+  using Step = PoseStep::Vector;
 
-  Point centroid_;
-  double length_;
+  PoseStep metric_;
   bool have_previous_ = false;
   Step previous_ = Step::Zero();
   int extrapolations_ = 0;
