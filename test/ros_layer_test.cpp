@@ -20,6 +20,7 @@
 #include "pda_registration/ros/idle_cores.hpp"
 #include "pda_registration/ros/initial_transform.hpp"
 #include "pda_registration/ros/latest_input_queue.hpp"
+#include "pda_registration/ros/live_parameters.hpp"
 #include "pda_registration/ros/point_cloud_conversion.hpp"
 
 namespace pda_registration {
@@ -308,6 +309,40 @@ TEST(IdleCores, AnotherProcessKeepingACoreBusyLeavesOneFewer) {
   EXPECT_LE(during, cores - 0.8);
   EXPECT_LE(idle.threadsFor(static_cast<int>(cores), 1e9),
             std::max(1, static_cast<int>(cores) - 1));
+}
+
+// One default parameter set: the nodelet's dynamic_reconfigure defaults map onto the core's (and
+// so the tools') registration defaults, except the thread count (the tools default to one thread
+// for comparable timings, the nodelet to two) and the crop bounds, which follow the gate.
+TEST(LiveParameters, TheNodeletsDefaultsAreTheCoresAndTheTools) {
+  const RegistrationParameters nodelet =
+      liveParametersFrom(PdaRegistrationConfig::__getDefault__()).registration;
+  const RegistrationParameters core;
+  EXPECT_EQ(nodelet.k, core.k);
+  EXPECT_EQ(nodelet.radius, core.radius);
+  EXPECT_EQ(nodelet.min_radius, core.min_radius);
+  EXPECT_EQ(nodelet.nu, core.nu);
+  EXPECT_EQ(nodelet.nu_mode, core.nu_mode);
+  EXPECT_EQ(nodelet.sigma_mode, core.sigma_mode);
+  EXPECT_EQ(nodelet.fixed_sigma, core.fixed_sigma);
+  EXPECT_EQ(nodelet.surface_anisotropy, core.surface_anisotropy);
+  EXPECT_EQ(nodelet.sampling_scale, core.sampling_scale);
+  EXPECT_EQ(nodelet.normal_voxel_size, core.normal_voxel_size);
+  EXPECT_EQ(nodelet.max_runs, core.max_runs);
+  EXPECT_EQ(nodelet.max_em_iterations, core.max_em_iterations);
+  EXPECT_EQ(nodelet.coarse_stride, core.coarse_stride);
+  EXPECT_EQ(nodelet.translation_epsilon, core.translation_epsilon);
+  EXPECT_EQ(nodelet.rotation_epsilon, core.rotation_epsilon);
+  EXPECT_EQ(nodelet.solver, core.solver);
+  EXPECT_EQ(nodelet.solver_max_iterations, core.solver_max_iterations);
+  EXPECT_EQ(nodelet.source_voxel_size, core.source_voxel_size);
+  EXPECT_EQ(nodelet.target_voxel_size, core.target_voxel_size);
+  EXPECT_EQ(nodelet.crop_above_points, core.crop_above_points);
+  EXPECT_EQ(nodelet.min_correspondences, core.min_correspondences);
+  EXPECT_EQ(nodelet.min_support_fraction, core.min_support_fraction);
+  EXPECT_EQ(nodelet.max_source_points, core.max_source_points);
+  EXPECT_EQ(nodelet.threads, 2);
+  EXPECT_EQ(core.threads, 1);
 }
 
 }  // namespace
