@@ -8,6 +8,7 @@
 // extrapolation until two fresh steps agree again.
 
 #include <Eigen/Geometry>
+#include <utility>
 
 #include "pda_registration/core/pose_step.hpp"
 

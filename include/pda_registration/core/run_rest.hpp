@@ -10,6 +10,7 @@
 
 #include <Eigen/Geometry>
 #include <deque>
+#include <utility>
 
 #include "pda_registration/core/pose_step.hpp"
 
