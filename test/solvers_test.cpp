@@ -99,6 +99,21 @@ TEST(Solvers, GaussNewtonAndCeresAgreeOnTheSurfaceModel) {
   EXPECT_LE(weightedObjective(c, newton), weightedObjective(c, closed) + 1e-9);
 }
 
+// Points without a normal (M = kappa I) among surface points: Gauss-Newton's structured normal
+// equations treat both kinds as Ceres's whitened residuals do.
+TEST(Solvers, GaussNewtonAndCeresAgreeWhereSomePointsHaveNoNormal) {
+  WeightedCorrespondences c = makeCorrespondences(someTransform(), 0.2, 0.01, 300, 5);
+  for (size_t i = 0; i < c.size(); i += 3) c.normal[i].setZero();
+  Eigen::Isometry3d newton = Eigen::Isometry3d::Identity();
+  Eigen::Isometry3d ceres = Eigen::Isometry3d::Identity();
+  ASSERT_TRUE(solveGaussNewton(c, 50, 0, 0, &newton));
+  ASSERT_TRUE(solveWithCeres(c, 100, 1, &ceres));
+  EXPECT_LT((newton.translation() - ceres.translation()).norm(), 1e-6);
+  EXPECT_LT(rotationDistance(newton, ceres), 1e-7);
+  EXPECT_NEAR(weightedObjective(c, newton), weightedObjective(c, ceres),
+              1e-9 * weightedObjective(c, ceres));
+}
+
 TEST(Solvers, RefuseTooFewCorrespondences) {
   const WeightedCorrespondences c = makeCorrespondences(someTransform(), 0.0, 1.0, 2, 4);
   Eigen::Isometry3d T = Eigen::Isometry3d::Identity();

@@ -15,21 +15,36 @@ constexpr size_t kMinimumSurfacePoints = 10;
 
 // base^exponent for base in (0, 1]: repeated multiplication when 2*exponent is a small integer
 // (nu = 1, 3, 5, ... and nu = 2, 4, ... give (nu + 3) / 2 of that form), std::pow otherwise.
-// The E-step spends most of its time here, and integer nu is the common case.
-double powerOf(double base, double exponent) {
-  const double twice = 2.0 * exponent;
-  if (twice > 0.0 && twice <= 64.0 && twice == std::floor(twice)) {
-    const int whole = static_cast<int>(exponent);
-    double result = (twice - 2.0 * whole) > 0.5 ? std::sqrt(base) : 1.0;
+// The E-step spends most of its time here, and integer nu is the common case; the form is
+// decided once per source point, not per candidate.
+class Power {
+ public:
+  explicit Power(double exponent) : exponent_(exponent) {
+    const double twice = 2.0 * exponent;
+    by_squaring_ = twice > 0.0 && twice <= 64.0 && twice == std::floor(twice);
+    if (by_squaring_) {
+      whole_ = static_cast<int>(exponent);
+      half_ = (twice - 2.0 * whole_) > 0.5;
+    }
+  }
+
+  double operator()(double base) const {
+    if (!by_squaring_) return std::pow(base, exponent_);
+    double result = half_ ? std::sqrt(base) : 1.0;
     double square = base;
-    for (int bits = whole; bits > 0; bits >>= 1) {
+    for (int bits = whole_; bits > 0; bits >>= 1) {
       if (bits & 1) result *= square;
       square *= square;
     }
     return result;
   }
-  return std::pow(base, exponent);
-}
+
+ private:
+  double exponent_;
+  bool by_squaring_ = false;
+  int whole_ = 0;
+  bool half_ = false;
+};
 
 }  // namespace
 
@@ -37,24 +52,34 @@ void computeCandidateWeights(const double* squared_residuals, size_t count, doub
                              double sigma_squared, double* posterior, double* weight) {
   if (count == 0) return;
   const bool gaussian = std::isinf(nu);
+  // weight[] holds the Mahalanobis distances until the last loop. Divisions are taken once per
+  // candidate: the E-step runs over every candidate of every EM iteration.
+  const double inverse_sigma_squared = 1.0 / sigma_squared;
+  double best = std::numeric_limits<double>::infinity();
+  for (size_t i = 0; i < count; ++i) {
+    weight[i] = squared_residuals[i] * inverse_sigma_squared;
+    best = std::min(best, weight[i]);
+  }
   // Densities are taken relative to the best candidate's, so tiny sigmas cannot underflow every
   // candidate to zero: for the t (eq. 20) p_i / p_best = ((nu + m_best) / (nu + m_i))^((nu+d)/2).
-  const double best =
-      *std::min_element(squared_residuals, squared_residuals + count) / sigma_squared;
-  const double exponent = 0.5 * (nu + kDimension);
+  const Power power(0.5 * (nu + kDimension));
   double total = 0.0;
   for (size_t i = 0; i < count; ++i) {
-    const double mahalanobis = squared_residuals[i] / sigma_squared;
-    posterior[i] = gaussian ? std::exp(-0.5 * (mahalanobis - best))                 // eq. 19
-                            : powerOf((nu + best) / (nu + mahalanobis), exponent);  // eq. 20
+    const double mahalanobis = weight[i];
+    if (gaussian) {
+      posterior[i] = std::exp(-0.5 * (mahalanobis - best));  // eq. 19
+      weight[i] = 1.0;
+    } else {
+      const double inverse = 1.0 / (nu + mahalanobis);
+      posterior[i] = power((nu + best) * inverse);  // eq. 20
+      weight[i] = (nu + kDimension) * inverse;                  // expected precision, eq. 16
+    }
     total += posterior[i];
   }
+  const double inverse_total = 1.0 / total;
   for (size_t i = 0; i < count; ++i) {
-    posterior[i] /= total;
-    const double mahalanobis = squared_residuals[i] / sigma_squared;
-    const double expected_precision =
-        gaussian ? 1.0 : (nu + kDimension) / (nu + mahalanobis);  // eq. 16
-    weight[i] = posterior[i] * expected_precision;                // eqs. 15, 21
+    posterior[i] *= inverse_total;
+    weight[i] *= posterior[i];  // eqs. 15, 21
   }
 }
 
