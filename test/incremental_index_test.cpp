@@ -94,6 +94,50 @@ TEST(TargetIndex, AnswersExactlyTheKNearestWithinRadiusTiesByIndex) {
   }
 }
 
+// Run after run, the search answers a point that moved little from the target points it kept
+// (candidate_sets.cpp): the candidates must be exactly a fresh search's, through moves from
+// centimetres to micrometres, a radius that shrinks and grows again, exact ties in distance, and
+// new source values in the same memory after forget().
+TEST(CandidateSets, AnswersFromKeptPointsEqualAFreshSearch) {
+  const TargetIndex target(cloudWithTies(20000, 3));
+  std::mt19937 random(4);
+  std::uniform_real_distribution<double> coordinate(-0.2, 2.2), height(-0.05, 0.05);
+  PointList source;
+  for (int i = 0; i < 3000; ++i) {
+    // A third exactly on grid points and half-way between them: ties.
+    if (i % 3 == 0) {
+      source.emplace_back(0.05 * (i % 40) + 0.025 * (i % 2), 0.05 * ((i / 40) % 40), 0.0);
+    } else {
+      source.emplace_back(coordinate(random), coordinate(random), height(random));
+    }
+  }
+  CandidateSearchBuffers buffers;
+  CandidateSets reused;
+  Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
+  size_t from_kept = 0;
+  const double radii[] = {0.3, 0.3, 0.1, 0.1, 0.05, 0.05, 0.3, 0.02, 0.3, 0.3};
+  int call = 0;
+  for (const bool renew_source : {false, true}) {
+    if (renew_source) {  // the same memory, other values: only forget() makes this safe
+      for (Point& p : source) p += Point(0.013, -0.007, 0.001);
+      buffers.forget();
+    }
+    for (double move = 1e-2; move > 1e-7; move *= 0.3, ++call) {
+      T = T * randomPerturbation(move * 20.0, move, static_cast<uint64_t>(call + 1));
+      const double radius = radii[call % 10];
+      findCandidateSets(target, source, T, 5, radius, 2, &buffers, &reused);
+      const CandidateSets fresh = findCandidateSets(target, source, T, 5, radius, 1);
+      expectSameCandidates(reused, fresh);
+      if (call == 0 || (renew_source && move == 1e-2)) {
+        EXPECT_EQ(buffers.answered_from_kept, 0u);
+      }
+      from_kept += buffers.answered_from_kept;
+    }
+  }
+  // Not vacuous: most answers of the small moves came from the kept points.
+  EXPECT_GT(from_kept, 3000u * 10);
+}
+
 TEST(TargetIndex, ExtendedEqualsRebuiltOnARealGrowingMap) {
   testing_support::SharedCase factory;
   std::string error;

@@ -144,6 +144,7 @@ RegistrationResult PdaRegistration::alignUnchecked(const PointList& source_input
 
   PointList& source = workspace_.source;
   source = source_input;
+  workspace_.search.forget();  // new points in the same memory, perhaps a new target
   result.source_points_dropped = removeNonFinitePoints(&source);
   if (p.source_voxel_size > 0.0) source = voxelDownsample(source, p.source_voxel_size);
   if (p.max_source_points > 0) {

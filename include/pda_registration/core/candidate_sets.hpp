@@ -23,11 +23,31 @@ struct CandidateSets {
   size_t sourcePointsWithCandidates() const;
 };
 
-/// The search's scratch space, kept between calls (see registration_workspace.hpp).
+/// The search's scratch space and its last answers, kept between calls (see
+/// registration_workspace.hpp). The last answers serve the next call on the same source points
+/// and target: as hints, and to certify a point's candidates unchanged without a search
+/// (candidate_sets.cpp).
 struct CandidateSearchBuffers {
-  std::vector<size_t> slots;              ///< k per source point
-  std::vector<double> squared_distances;  ///< k per source point
-  std::vector<size_t> found;              ///< per source point
+  std::vector<size_t> slots;              ///< per source point: its nearest, candidates first
+  std::vector<double> squared_distances;  ///< the same slots' squared distances
+  std::vector<size_t> found;              ///< candidates per source point (at most k)
+  std::vector<size_t> kept;               ///< target points kept per source point (>= found)
+  /// Per source point, a lower bound on the squared distance of every target point not kept
+  /// (the nearest of them, or the squared radius when there is none within it).
+  std::vector<double> outsider_bound;
+  std::vector<unsigned char> answered;  ///< per source point: from the kept points (last call)
+  // What the last answers were found for; certification needs exactly these points and target.
+  const Point* source = nullptr;
+  const TargetIndex* target = nullptr;
+  size_t target_size = 0;
+  int k = 0;
+  Eigen::Isometry3d T_target_source = Eigen::Isometry3d::Identity();
+  bool have_answers = false;
+  size_t answered_from_kept = 0;  ///< by the last call, without a search
+
+  /// The next call searches afresh (call when the source points' values or the target may have
+  /// changed under the same memory: a new alignment).
+  void forget() { have_answers = false; }
 };
 
 /// Searches candidates for every source point transformed by T_target_source. `threads` > 1
