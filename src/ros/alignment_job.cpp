@@ -8,6 +8,7 @@
 #include "pda_registration/ros/input_checks.hpp"
 #include "pda_registration/ros/point_cloud_conversion.hpp"
 #include "pda_registration/ros/seed_lookup.hpp"
+#include "pda_registration/ros/tf_edge.hpp"
 
 namespace pda_registration {
 namespace {
@@ -26,6 +27,24 @@ void AlignmentJob::reportSpacing(const PointList& sparse) {
   // The cloud as received (before source_voxel_size): a sensor's own spacing. Thinning the map to
   // a source voxel as well cost 2 mm on the dense-dense Kinect pair (both ~2 cm apart).
   c_.keeper->noteSparseSpacing(sampleSpacing(sparse));
+}
+
+const char* const AlignmentJob::kWarmStartUsed = "used";
+
+std::string AlignmentJob::warmStartUse(const Seed& seed, const std::string& dense_frame,
+                                       const std::string& sparse_frame,
+                                       const LiveParameters& live) const {
+  if (!live.warm_start) return "off";
+  if (!warm_start_.holds(dense_frame, sparse_frame)) return "no accepted estimate yet";
+  // The node's own edge on the seed's chain (own edge, correction edge): the seed already holds
+  // the correction, and applying it again would count it twice.
+  const NodeSettings& settings = *c_.settings;
+  if (seed.source != SeedSource::kInitialTransform && settings.publish_tf &&
+      frameInSeedChain(*c_.tf_buffer, dense_frame, sparse_frame,
+                       edgeChildFrame(sparse_frame, settings.tf_child_frame))) {
+    return "not applied: the node's own tf edge is part of the seed";
+  }
+  return kWarmStartUsed;
 }
 
 void AlignmentJob::run(const SparseJob& job, const LiveParameters& live) {
@@ -79,29 +98,49 @@ void AlignmentJob::run(const SparseJob& job, const LiveParameters& live) {
   // The core aligns source to target; the output is always dense <- sparse.
   const bool want_markers = c_.publisher->hasAssociationSubscribers() && live.max_markers > 0;
   Associations associations;
-  Eigen::Isometry3d seed_target_source;
   const PointList* source_points;
   PdaRegistration* registration;
   if (settings.dense_is_target) {
     registration = &map->registration;
-    seed_target_source = seed.T_dense_sparse;
     source_points = &sparse.points;
   } else {
     registration = &sparse_target_;
     registration->setParameters(live.registration);
     registration->setTarget(sparse.points);
-    seed_target_source = seed.T_dense_sparse.inverse();
     source_points = &map->points;
   }
+  const auto targetSource = [&](const Eigen::Isometry3d& T_dense_sparse) {
+    return settings.dense_is_target ? T_dense_sparse : T_dense_sparse.inverse();
+  };
   // No more threads than the cores other processes leave idle (idle_cores.hpp).
   RegistrationParameters parameters = live.registration;
   parameters.threads = c_.idle_cores->threadsFor(parameters.threads);
   registration->setParameters(parameters);
+
   // Beyond max_source_points the core aligns an unbiased subsample (source_budget.hpp); a
-  // swapped alignment still indexes the whole dense source as its target.
-  const RegistrationResult result = registration->align(*source_points, seed_target_source,
-                                                        want_markers ? &associations : nullptr);
-  const Verdict verdict = judgeAlignment(result, seed_target_source, live.acceptance);
+  // swapped alignment still indexes the whole dense source as its target. Every result is judged
+  // against the seed itself, wherever the alignment started.
+  const Eigen::Isometry3d seed_target_source = targetSource(seed.T_dense_sparse);
+  RegistrationResult result;
+  Verdict verdict;
+  double attempts_ms = 0.0;
+  std::string warm_start = warmStartUse(seed, dense_frame, sparse_frame, live);
+  const bool retried = alignFromWarmStart(
+      warm_start_, warm_start == kWarmStartUsed, seed.T_dense_sparse,
+      [&](const Eigen::Isometry3d& T_dense_sparse_initial) {
+        result = registration->align(*source_points, targetSource(T_dense_sparse_initial),
+                                     want_markers ? &associations : nullptr);
+        verdict = judgeAlignment(result, seed_target_source, live.acceptance);
+        attempts_ms += result.time_ms;
+        return verdict.accepted;
+      });
+  result.time_ms = attempts_ms;  // both attempts, when the warm one was retried
+  if (retried) warm_start = "used, rejected; retried from the seed";
+  if (verdict.accepted) {
+    const Eigen::Isometry3d T_dense_sparse =
+        settings.dense_is_target ? result.T_target_source : result.T_target_source.inverse();
+    warm_start_.remember(seed.T_dense_sparse, T_dense_sparse, dense_frame, sparse_frame);
+  }
   c_.status->update([&](AlignmentStatusValues& s) {
     ++s.aligned;
     s.have_result = true;
@@ -114,6 +153,8 @@ void AlignmentJob::run(const SparseJob& job, const LiveParameters& live) {
     s.source_points_used = result.source_points_used;
     s.source_points_received = source_points->size();
     s.threads_used = parameters.threads;
+    s.warm_start = warm_start;
+    if (retried) ++s.warm_start_retries;
     if (verdict.accepted)
       ++s.accepted;
     else

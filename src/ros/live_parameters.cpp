@@ -42,6 +42,7 @@ LiveParameters liveParametersFrom(const PdaRegistrationConfig& c) {
   live.min_interval = c.min_interval;
   live.max_markers = static_cast<size_t>(std::max(c.max_markers, 0));
   live.dense_subset = c.dense_subset;
+  live.warm_start = c.warm_start;
   return live;
 }
 

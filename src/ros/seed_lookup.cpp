@@ -2,6 +2,9 @@
 
 #include <tf2_eigen/tf2_eigen.h>
 
+#include <algorithm>
+#include <vector>
+
 namespace pda_registration {
 
 const char* toString(SeedSource source) {
@@ -37,6 +40,19 @@ bool lookupAtStampOrLatest(const tf2_ros::Buffer& buffer, const std::string& tar
     *error = e.what();
   }
   return false;
+}
+
+bool frameInSeedChain(const tf2_ros::Buffer& buffer, const std::string& dense_frame,
+                      const std::string& sparse_frame, const std::string& frame) {
+  if (frame == dense_frame || frame == sparse_frame) return true;
+  std::vector<std::string> chain;
+  try {
+    buffer._chainAsVector(dense_frame, ros::Time(0), sparse_frame, ros::Time(0), dense_frame,
+                          chain);
+  } catch (const tf2::TransformException&) {
+    return true;
+  }
+  return std::find(chain.begin(), chain.end(), frame) != chain.end();
 }
 
 Seed lookupSeed(const tf2_ros::Buffer& buffer, const std::string& dense_frame,

@@ -4,6 +4,10 @@
 
 namespace pda_registration {
 
+std::string edgeChildFrame(const std::string& sparse_frame, const std::string& child_setting) {
+  return child_setting.empty() ? sparse_frame + "_aligned" : child_setting;
+}
+
 bool expressOnTfEdge(const tf2_ros::Buffer& buffer, const Eigen::Isometry3d& T_dense_sparse,
                      const std::string& dense_frame, const std::string& sparse_frame,
                      const std::string& parent_setting, const std::string& child_setting,
@@ -11,7 +15,7 @@ bool expressOnTfEdge(const tf2_ros::Buffer& buffer, const Eigen::Isometry3d& T_d
                      std::string* error) {
   const std::string aligned_sparse = sparse_frame + "_aligned";
   edge->parent = parent_setting.empty() ? dense_frame : parent_setting;
-  edge->child = child_setting.empty() ? aligned_sparse : child_setting;
+  edge->child = edgeChildFrame(sparse_frame, child_setting);
   edge->T_parent_child = T_dense_sparse;
   bool at_stamp = false;
   if (edge->parent != dense_frame) {

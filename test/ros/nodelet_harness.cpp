@@ -22,6 +22,11 @@ void addParameter(std::vector<Parameter>* list, const std::string& name, const V
 }
 }  // namespace
 
+ParameterChange& ParameterChange::set(const std::string& name, bool value) {
+  addParameter(&config_.bools, name, value);
+  return *this;
+}
+
 ParameterChange& ParameterChange::set(const std::string& name, int value) {
   addParameter(&config_.ints, name, value);
   return *this;

@@ -30,6 +30,7 @@ namespace testing_support {
 /// harness.reconfigure(ParameterChange().set("k", 3).set("solver", "ceres")).
 class ParameterChange {
  public:
+  ParameterChange& set(const std::string& name, bool value);
   ParameterChange& set(const std::string& name, int value);
   ParameterChange& set(const std::string& name, double value);
   ParameterChange& set(const std::string& name, const std::string& value);

@@ -10,6 +10,7 @@
 
 #include "pda_registration/core/associations.hpp"
 #include "pda_registration/core/pda_registration.hpp"
+#include "pda_registration/core/warm_start.hpp"
 #include "pda_registration/ros/alignment_publisher.hpp"
 #include "pda_registration/ros/alignment_status.hpp"
 #include "pda_registration/ros/dense_map_keeper.hpp"
@@ -17,6 +18,7 @@
 #include "pda_registration/ros/idle_cores.hpp"
 #include "pda_registration/ros/live_parameters.hpp"
 #include "pda_registration/ros/node_settings.hpp"
+#include "pda_registration/ros/seed_lookup.hpp"
 
 namespace pda_registration {
 
@@ -59,12 +61,19 @@ class AlignmentJob {
   /// was the target.
   Eigen::Matrix<double, 6, 6> publishedCovariance(const RegistrationResult& result) const;
 
+  /// Whether this alignment starts from the seed corrected by the last accepted correction
+  /// (core/warm_start.hpp): kWarmStartUsed, or why not.
+  std::string warmStartUse(const Seed& seed, const std::string& dense_frame,
+                           const std::string& sparse_frame, const LiveParameters& live) const;
+  static const char* const kWarmStartUsed;
+
   /// Tells the keeper the sparse clouds' sample spacing (for the dense map's subset), measured
   /// on the first cloud and then every kSpacingPeriod seconds, after the answer is out.
   void reportSpacing(const PointList& sparse);
 
   AlignmentJobContext c_;
   PdaRegistration sparse_target_;  // the registration when the sparse cloud is the target
+  WarmStart warm_start_;           // the worker thread's alone
   ros::WallTime last_spacing_;
 };
 

@@ -49,6 +49,10 @@ struct AlignmentStatusValues {
   // Source points of the last alignment: as received, and used (after the budget and filters).
   size_t source_points_received = 0, source_points_used = 0;
   int threads_used = 0;  ///< by the last alignment: at most `threads`, no more than idle cores
+  // Whether the last alignment started from the seed corrected by the last accepted correction
+  // (core/warm_start.hpp), or why not; and how often such a start was rejected and retried.
+  std::string warm_start = "no alignment yet";
+  size_t warm_start_retries = 0;
 };
 
 class AlignmentStatus {

@@ -17,6 +17,9 @@ struct LiveParameters {
   /// Index a dense map much finer than the sparse clouds as its representative subset at their
   /// sample spacing (core/representative_subset.hpp).
   bool dense_subset = true;
+  /// Start each alignment from the seed corrected by the last accepted correction
+  /// (core/warm_start.hpp), unless the node's own tf edge is part of the seed.
+  bool warm_start = true;
 };
 
 LiveParameters liveParametersFrom(const PdaRegistrationConfig& config);

@@ -26,6 +26,12 @@ bool lookupAtStampOrLatest(const tf2_ros::Buffer& buffer, const std::string& tar
                            const ros::Duration& timeout, Eigen::Isometry3d* T, bool* at_stamp,
                            std::string* error);
 
+/// True when `frame` lies on tf's chain from `dense_frame` to `sparse_frame` (either end
+/// included): an edge whose child is `frame` then moves the seed. Also true when tf cannot tell
+/// (no chain yet), the cautious answer for the warm start (core/warm_start.hpp).
+bool frameInSeedChain(const tf2_ros::Buffer& buffer, const std::string& dense_frame,
+                      const std::string& sparse_frame, const std::string& frame);
+
 Seed lookupSeed(const tf2_ros::Buffer& buffer, const std::string& dense_frame,
                 const std::string& sparse_frame, const ros::Time& stamp,
                 const ros::Duration& timeout, const Eigen::Isometry3d* initial_transform);

@@ -17,6 +17,9 @@ struct TfEdge {
   Eigen::Isometry3d T_parent_child = Eigen::Isometry3d::Identity();
 };
 
+/// The child frame of the node's edge: `child_setting`, or "<sparse frame>_aligned" when empty.
+std::string edgeChildFrame(const std::string& sparse_frame, const std::string& child_setting);
+
 /// Empty `parent_setting` / `child_setting` mean the defaults above. False, with tf's error in
 /// *error, when tf cannot relate the parent to the dense frame or the sparse frame to the child
 /// (at the stamp, waiting up to `timeout`, else with the latest transforms).

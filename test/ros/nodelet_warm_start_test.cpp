@@ -1,0 +1,90 @@
+// rostest: the warm start (core/warm_start.hpp) in the running nodelet. With warm_start off an
+// alignment starts from the seed; switched on, the next starts from the seed corrected by the
+// last accepted correction, needs fewer runs and lands as close; off again, the node repeats its
+// answer from the seed exactly (same map index, cloud and seed: the alignment is deterministic).
+#include <gtest/gtest.h>
+
+#include <cstdio>
+#include <string>
+
+#include "nodelet_harness.hpp"
+#include "pda_registration/core/error_metrics.hpp"
+#include "pda_registration/core/perturbation.hpp"
+#include "test_support/shared_data.hpp"
+
+namespace pda_registration {
+namespace {
+
+using testing_support::NodeletHarness;
+using testing_support::toEigen;
+
+struct Answer {
+  Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
+  int runs = 0;
+  std::string warm_start;
+};
+
+// Publishes the scan, waits for its ~transform and for the diagnostics that count it.
+::testing::AssertionResult alignOnce(NodeletHarness* harness, const PointList& scan,
+                                     Answer* answer) {
+  harness->publishSparse(scan, "sparse_map");
+  if (!harness->waitForNextTransform(60.0)) return ::testing::AssertionFailure() << "no answer";
+  std::string detail;
+  if (!harness->waitForAcceptedToMatchTransforms(10.0, &detail))
+    return ::testing::AssertionFailure() << "diagnostics never counted it: " << detail;
+  answer->T = toEigen(harness->lastTransform().transform);
+  answer->runs = std::stoi(harness->diagnosticValue("runs"));
+  answer->warm_start = harness->diagnosticValue("warm start");
+  return ::testing::AssertionSuccess();
+}
+
+TEST(NodeletWarmStart, StartsFromTheLastCorrectionUnlessSwitchedOff) {
+  testing_support::SharedCase data;
+  std::string error;
+  ASSERT_TRUE(testing_support::loadSharedCase("room_scan", &data, &error)) << error;
+  NodeletHarness harness("pda_registration");
+  ASSERT_TRUE(harness.waitForConnections(20.0));
+  const Eigen::Isometry3d seed = data.T_target_source * randomPerturbation(5.0, 0.25, 4);
+  ASSERT_TRUE(harness.publishSeed(seed, "dense_map", "sparse_map"));
+  harness.publishDense(data.target, "dense_map");
+  ros::WallDuration(0.5).sleep();  // the latched map and the static seed first
+
+  Answer first, cold, warm, cold_again;
+  ASSERT_TRUE(alignOnce(&harness, data.source, &first));
+  EXPECT_EQ(first.warm_start, "no accepted estimate yet");
+  // The first sparse cloud tells the keeper its spacing, and the room's map is re-indexed as its
+  // subset at that spacing: the alignments compared below all run on that index.
+  const ros::WallTime until = ros::WallTime::now() + ros::WallDuration(20.0);
+  while (harness.diagnosticValue("dense map subset voxel [cm]") == "0" &&
+         ros::WallTime::now() < until) {
+    harness.waitForFreshDiagnostics(2.0);
+  }
+  ASSERT_NE(harness.diagnosticValue("dense map subset voxel [cm]"), "0");
+
+  ASSERT_TRUE(harness.reconfigure(testing_support::ParameterChange().set("warm_start", false)));
+  ASSERT_TRUE(alignOnce(&harness, data.source, &cold));
+  EXPECT_EQ(cold.warm_start, "off");
+  ASSERT_TRUE(harness.reconfigure(testing_support::ParameterChange().set("warm_start", true)));
+  ASSERT_TRUE(alignOnce(&harness, data.source, &warm));
+  EXPECT_EQ(warm.warm_start, "used");
+  EXPECT_LT(warm.runs, cold.runs);
+  for (const Answer* answer : {&first, &cold, &warm}) {
+    const PoseError e = poseError(data.source, answer->T, data.T_target_source);
+    EXPECT_LT(e.translation, 0.03);
+    EXPECT_LT(e.rotation_deg, 0.75);
+  }
+  // The two answers agree far better than either does with the (registration-made) truth.
+  EXPECT_LT(poseError(data.source, warm.T, cold.T).mean_distance, 0.005);
+
+  // Off again: the node starts from the seed and repeats its cold answer exactly.
+  ASSERT_TRUE(harness.reconfigure(testing_support::ParameterChange().set("warm_start", false)));
+  ASSERT_TRUE(alignOnce(&harness, data.source, &cold_again));
+  EXPECT_EQ(cold_again.runs, cold.runs);
+  EXPECT_TRUE(cold_again.T.isApprox(cold.T, 1e-9));
+  EXPECT_EQ(harness.diagnosticValue("warm starts retried from the seed"), "0");
+  EXPECT_TRUE(harness.warnings().empty()) << harness.warnings().front();
+  std::printf("runs: first %d, from the seed %d, warm %d\n", first.runs, cold.runs, warm.runs);
+}
+
+}  // namespace
+}  // namespace pda_registration
