@@ -113,7 +113,7 @@ int main(int argc, char** argv) {
   std::map<size_t, std::pair<double, double>> index_updates;  // count -> wall, CPU [ms]
   // The last diagnostics' index figures: points indexed (the map's subset when thinned), folds
   // of the trees, threads of the last alignment.
-  size_t indexed_points = 0, folds = 0, threads_used = 0;
+  size_t indexed_points = 0, folds = 0, threads_used = 0, rejected = 0, warm_start_retries = 0;
   double subset_voxel_cm = 0.0;
   ros::Subscriber results = node.subscribe<geometry_msgs::TransformStamped>(
       "/" + nodelet + "/transform", 100, [&](const geometry_msgs::TransformStamped::ConstPtr& m) {
@@ -145,6 +145,12 @@ int main(int argc, char** argv) {
             }
           } catch (const std::exception&) {
             // an older nodelet without these keys: no index figures
+          }
+          try {
+            rejected = std::stoul(values["rejected results"]);
+            warm_start_retries = std::stoul(values["warm starts retried from the seed"]);
+          } catch (const std::exception&) {
+            // a nodelet without a warm start
           }
         }
       });
@@ -283,6 +289,7 @@ int main(int argc, char** argv) {
   json.add("index_updates_seen", updates.size());
   json.add("max_indexed_points", indexed_points).add("subset_voxel_cm", subset_voxel_cm);
   json.add("index_folds", folds).add("threads_used", threads_used);
+  json.add("rejected", rejected).add("warm_start_retries", warm_start_retries);
   json.addRaw("bands", bands.str());
   std::cout << json.str() << std::endl;
   if (cl.has("samples")) {
