@@ -1,7 +1,7 @@
 // The ROS layer's pure parts, without a roscore: PointCloud2 conversion of good and broken
-// messages, the ~initial_transform list, association markers, the newest-input mailbox, the
-// acceptance gate, the warm start's correction, covariance propagation through inversion, and
-// the idle-core count that caps the alignment's threads.
+// messages, the ~initial_transform list, association markers, the newest-input mailbox,
+// covariance propagation through inversion, and the idle-core count that caps the alignment's
+// threads. (The gate and the warm start: alignment_decisions_test.)
 #include <gtest/gtest.h>
 #include <signal.h>
 #include <sys/wait.h>
@@ -14,10 +14,8 @@
 #include <thread>
 #include <vector>
 
-#include "pda_registration/core/alignment_gate.hpp"
 #include "pda_registration/core/pose_covariance.hpp"
 #include "pda_registration/core/pose_jacobian.hpp"
-#include "pda_registration/core/warm_start.hpp"
 #include "pda_registration/ros/association_markers.hpp"
 #include "pda_registration/ros/idle_cores.hpp"
 #include "pda_registration/ros/initial_transform.hpp"
@@ -227,102 +225,6 @@ TEST(LatestInputQueue, NewerInputReplacesPendingAndStopWakesTheWorker) {
   std::this_thread::sleep_for(std::chrono::milliseconds(50));
   queue.stop();
   worker.join();
-}
-
-TEST(AlignmentGate, RejectsUnconvergedPoorAndWildResults) {
-  RegistrationResult result;
-  result.converged = true;
-  result.inlier_fraction = 0.8;
-  const Eigen::Isometry3d seed = Eigen::Isometry3d::Identity();
-  AcceptanceThresholds thresholds;
-  EXPECT_TRUE(judgeAlignment(result, seed, thresholds).accepted);
-
-  RegistrationResult poor = result;
-  poor.inlier_fraction = 0.1;
-  EXPECT_NE(judgeAlignment(poor, seed, thresholds).reason.find("inlier fraction"),
-            std::string::npos);
-  RegistrationResult far = result;
-  far.T_target_source.translation() = Eigen::Vector3d(2.0, 0, 0);
-  EXPECT_NE(judgeAlignment(far, seed, thresholds).reason.find("max_correction_translation"),
-            std::string::npos);
-  RegistrationResult turned = result;
-  turned.T_target_source.linear() =
-      Eigen::AngleAxisd(0.5, Eigen::Vector3d::UnitZ()).toRotationMatrix();
-  EXPECT_NE(judgeAlignment(turned, seed, thresholds).reason.find("max_correction_rotation"),
-            std::string::npos);
-  RegistrationResult failed = result;
-  failed.converged = false;
-  failed.reason = "no overlap";
-  EXPECT_NE(judgeAlignment(failed, seed, thresholds).reason.find("no overlap"), std::string::npos);
-}
-
-// The correction is kept on the dense side: it turns the seed it came from into the estimate,
-// and carries over to a seed the sensor has moved on from (seed * motion -> estimate * motion),
-// which a correction kept on the sparse side would not.
-TEST(WarmStart, CarriesTheLastCorrectionOverToTheNextSeed) {
-  const auto pose = [](double yaw, const Eigen::Vector3d& t) {
-    Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
-    T.linear() = Eigen::AngleAxisd(yaw, Eigen::Vector3d::UnitZ()).toRotationMatrix();
-    T.translation() = t;
-    return T;
-  };
-  const Eigen::Isometry3d truth = pose(0.7, Eigen::Vector3d(2.0, -1.0, 0.3));
-  const Eigen::Isometry3d drift = pose(0.05, Eigen::Vector3d(0.2, 0.1, 0.0));  // dense side
-  const Eigen::Isometry3d seed = drift * truth;
-
-  WarmStart warm;
-  EXPECT_FALSE(warm.holds("map", "velodyne"));
-  warm.remember(seed, truth, "map", "velodyne");
-  ASSERT_TRUE(warm.holds("map", "velodyne"));
-  EXPECT_FALSE(warm.holds("map", "kinect"));
-  EXPECT_FALSE(warm.holds("odom", "velodyne"));
-  EXPECT_TRUE(warm.corrected(seed).isApprox(truth, 1e-12));
-
-  // The sensor moved 3 m and turned; the seed publisher's drift is the same.
-  const Eigen::Isometry3d motion = pose(-0.4, Eigen::Vector3d(3.0, 0.5, 0.0));
-  const Eigen::Isometry3d next_truth = truth * motion;
-  EXPECT_TRUE(warm.corrected(drift * next_truth).isApprox(next_truth, 1e-12));
-
-  // A non-finite estimate is not kept, and forget() drops what was.
-  Eigen::Isometry3d broken = truth;
-  broken.translation().x() = std::numeric_limits<double>::quiet_NaN();
-  warm.remember(seed, broken, "map", "velodyne");
-  EXPECT_FALSE(warm.holds("map", "velodyne"));
-  warm.remember(seed, truth, "map", "velodyne");
-  warm.forget();
-  EXPECT_FALSE(warm.holds("map", "velodyne"));
-}
-
-// Where the attempts start: the corrected seed, then (only when that is rejected) the seed.
-TEST(WarmStart, ARejectedWarmAttemptIsRetriedFromTheSeed) {
-  Eigen::Isometry3d seed = Eigen::Isometry3d::Identity();
-  seed.translation() = Eigen::Vector3d(1.0, 2.0, 0.0);
-  Eigen::Isometry3d estimate = seed;
-  estimate.translation().x() += 0.3;
-  WarmStart warm;
-  warm.remember(seed, estimate, "map", "velodyne");
-
-  std::vector<Eigen::Isometry3d> starts;
-  const auto acceptOnly = [&](const Eigen::Isometry3d& accepted) {
-    return [&starts, accepted](const Eigen::Isometry3d& initial) {
-      starts.push_back(initial);
-      return initial.isApprox(accepted);
-    };
-  };
-  EXPECT_FALSE(alignFromWarmStart(warm, true, seed, acceptOnly(estimate)));
-  ASSERT_EQ(starts.size(), 1u);
-  EXPECT_TRUE(starts[0].isApprox(estimate));
-
-  starts.clear();
-  EXPECT_TRUE(alignFromWarmStart(warm, true, seed, acceptOnly(seed)));
-  ASSERT_EQ(starts.size(), 2u);
-  EXPECT_TRUE(starts[0].isApprox(estimate));
-  EXPECT_TRUE(starts[1].isApprox(seed));
-
-  starts.clear();
-  EXPECT_FALSE(alignFromWarmStart(warm, false, seed, acceptOnly(estimate)));
-  ASSERT_EQ(starts.size(), 1u);
-  EXPECT_TRUE(starts[0].isApprox(seed));
 }
 
 // The inverse's covariance matches a finite-difference propagation through T -> T^-1.
