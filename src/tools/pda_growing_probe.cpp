@@ -111,8 +111,8 @@ int main(int argc, char** argv) {
   size_t ready_points = 0;                  // the nodelet's map in use (diagnostics)
   std::vector<std::pair<size_t, double>> samples;  // (dense points, latency ms)
   std::map<size_t, std::pair<double, double>> index_updates;  // count -> wall, CPU [ms]
-  // The last diagnostics' index figures: points indexed (the map's subset when thinned), folds
-  // of the trees, threads of the last alignment.
+  // The last diagnostics' figures: points indexed (the map's subset when thinned), folds of the
+  // trees, threads of the last alignment, results rejected and warm starts retried.
   size_t indexed_points = 0, folds = 0, threads_used = 0, rejected = 0, warm_start_retries = 0;
   double subset_voxel_cm = 0.0;
   ros::Subscriber results = node.subscribe<geometry_msgs::TransformStamped>(
