@@ -107,7 +107,8 @@ TEST_F(NodeletBadInput, F_CloudWithoutXyzFields) {
 }
 
 TEST_F(NodeletBadInput, G_NoOverlapIsRejectedAndTheLastGoodEstimateStays) {
-  const Eigen::Isometry3d good = harness_->lookup("dense_map", "sparse_map_aligned", 5.0);
+  Eigen::Isometry3d good;
+  ASSERT_TRUE(harness_->lastTransformOnTf(5.0, &good)) << "tf never carried the last ~transform";
   PointList far_away = data_->source;
   for (Point& p : far_away) p += Point(500.0, 0.0, 0.0);
   expectRefused([&far_away] { harness_->publishSparse(far_away, "sparse_map"); },

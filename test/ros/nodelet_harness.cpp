@@ -338,6 +338,19 @@ Eigen::Isometry3d NodeletHarness::lookup(const std::string& parent, const std::s
       tf_buffer_.lookupTransform(parent, child, stamp, ros::Duration(timeout_s)));
 }
 
+bool NodeletHarness::lastTransformOnTf(double timeout_s, Eigen::Isometry3d* last) {
+  const std::vector<geometry_msgs::TransformStamped> all = transforms();
+  if (all.empty()) return false;
+  *last = toEigen(all.back().transform);
+  const ros::WallTime end = ros::WallTime::now() + ros::WallDuration(timeout_s);
+  while (ros::ok() && ros::WallTime::now() < end) {
+    const Eigen::Isometry3d edge = lookup("dense_map", "sparse_map_aligned", timeout_s);
+    if ((edge.translation() - last->translation()).norm() < 1e-9) return true;
+    ros::WallDuration(0.05).sleep();
+  }
+  return false;
+}
+
 Eigen::Isometry3d toEigen(const geometry_msgs::Transform& t) {
   Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
   T.linear() = Eigen::Quaterniond(t.rotation.w, t.rotation.x, t.rotation.y, t.rotation.z)

@@ -113,6 +113,9 @@ class NodeletHarness {
   /// tf2::TransformException).
   Eigen::Isometry3d lookup(const std::string& parent, const std::string& child, double timeout_s,
                            const ros::Time& stamp = ros::Time(0));
+  /// The last ~transform received, once tf's latest dense_map -> sparse_map_aligned carries it
+  /// too (the edge can reach the listener a little after the message); false on timeout.
+  bool lastTransformOnTf(double timeout_s, Eigen::Isometry3d* last);
 
  private:
   ros::NodeHandle node_;
