@@ -5,9 +5,10 @@
 // (then held for --hold s), while the case's sparse cloud is published at --sparse-rate Hz with a
 // new stamp each time. Each ~transform is matched to its sparse cloud by stamp. Prints one JSON
 // line (median_ms, p95_ms, max_dense_points, index_update_ms: the median of the nodelet's index
-// updates, the points indexed (a subset when the map is thinned), folds, threads, and the latency
-// per dense-map size band) and, with --samples FILE, writes one
-// "dense_points,latency_ms" line per answer for the plot. Needs a running roscore and the nodelet
+// updates, the answers' errors against the ground truth: median, max and how many over 5 cm, the
+// points indexed (a subset when the map is thinned), folds, threads, and the latency per
+// dense-map size band) and, with --samples FILE, writes one "dense_points,latency_ms,error_m"
+// line per answer for the plot. Needs a running roscore and the nodelet
 // (scripts/measure_latency --growing starts both). Every wait is bounded by --timeout.
 
 #include <diagnostic_msgs/DiagnosticArray.h>
@@ -26,6 +27,7 @@
 #include <sstream>
 #include <vector>
 
+#include "pda_registration/core/error_metrics.hpp"
 #include "pda_registration/core/perturbation.hpp"
 #include "pda_registration/ros/point_cloud_conversion.hpp"
 #include "pda_registration/tools/case_folder.hpp"
@@ -109,7 +111,13 @@ int main(int argc, char** argv) {
   std::mutex mutex;
   std::map<ros::Time, ros::WallTime> sent;  // sparse stamp -> when published
   size_t ready_points = 0;                  // the nodelet's map in use (diagnostics)
-  std::vector<std::pair<size_t, double>> samples;  // (dense points, latency ms)
+  // One per answer: the dense map in use, the latency and the answer's error (eq. 22 against
+  // the case's ground truth: a fast answer that is wrong is no answer).
+  struct Sample {
+    size_t dense_points;
+    double latency_ms, error_m;
+  };
+  std::vector<Sample> samples;
   std::map<size_t, std::pair<double, double>> index_updates;  // count -> wall, CPU [ms]
   // The last diagnostics' figures: points indexed (the map's subset when thinned), folds of the
   // trees, threads of the last alignment, results rejected and warm starts retried.
@@ -121,7 +129,10 @@ int main(int argc, char** argv) {
         std::lock_guard<std::mutex> lock(mutex);
         const auto it = sent.find(m->header.stamp);
         if (it == sent.end()) return;
-        samples.emplace_back(ready_points, (now - it->second).toSec() * 1000.0);
+        const double error_m =
+            poseError(loaded.source, tf2::transformToEigen(m->transform), loaded.T_target_source)
+                .mean_distance;
+        samples.push_back({ready_points, (now - it->second).toSec() * 1000.0, error_m});
         sent.erase(it);
       });
   ros::Subscriber diagnostics = node.subscribe<diagnostic_msgs::DiagnosticArray>(
@@ -254,11 +265,13 @@ int main(int argc, char** argv) {
 
   std::lock_guard<std::mutex> lock(mutex);
   if (samples.empty()) return fail("no sparse cloud was answered (see the nodelet's log)");
-  std::vector<double> latencies, updates, updates_cpu;
-  size_t max_points = 0;
-  for (const auto& s : samples) {
-    latencies.push_back(s.second);
-    max_points = std::max(max_points, s.first);
+  std::vector<double> latencies, errors, updates, updates_cpu;
+  size_t max_points = 0, over_5cm = 0;
+  for (const Sample& s : samples) {
+    latencies.push_back(s.latency_ms);
+    errors.push_back(s.error_m);
+    if (s.error_m > 0.05) ++over_5cm;
+    max_points = std::max(max_points, s.dense_points);
   }
   for (const auto& u : index_updates) {
     updates.push_back(u.second.first);
@@ -270,8 +283,10 @@ int main(int argc, char** argv) {
   bands << "[";
   for (size_t b = 0; b < 5; ++b) {
     std::vector<double> in_band;
-    for (const auto& s : samples) {
-      if (s.first >= b * band && s.first < (b + 1) * band) in_band.push_back(s.second);
+    for (const Sample& s : samples) {
+      if (s.dense_points >= b * band && s.dense_points < (b + 1) * band) {
+        in_band.push_back(s.latency_ms);
+      }
     }
     bands << (b ? "," : "") << "{\"up_to_points\":" << (b + 1) * band
           << ",\"count\":" << in_band.size() << ",\"median_ms\":"
@@ -289,13 +304,17 @@ int main(int argc, char** argv) {
   json.add("index_updates_seen", updates.size());
   json.add("max_indexed_points", indexed_points).add("subset_voxel_cm", subset_voxel_cm);
   json.add("index_folds", folds).add("threads_used", threads_used);
+  json.add("error_median_m", percentile(errors, 0.5)).add("error_max_m", percentile(errors, 1.0));
+  json.add("answers_over_5cm", over_5cm);
   json.add("rejected", rejected).add("warm_start_retries", warm_start_retries);
   json.addRaw("bands", bands.str());
   std::cout << json.str() << std::endl;
   if (cl.has("samples")) {
     std::ofstream out(cl.text("samples"));
-    out << "dense_points,latency_ms\n";
-    for (const auto& s : samples) out << s.first << "," << s.second << "\n";
+    out << "dense_points,latency_ms,error_m\n";
+    for (const Sample& s : samples) {
+      out << s.dense_points << "," << s.latency_ms << "," << s.error_m << "\n";
+    }
     if (!out) return fail("cannot write " + cl.text("samples"));
   }
   return 0;
