@@ -128,12 +128,12 @@ int main(int argc, char** argv) {
   ros::Subscriber results = node.subscribe<geometry_msgs::TransformStamped>(
       "/" + nodelet + "/transform", 100, [&](const geometry_msgs::TransformStamped::ConstPtr& m) {
         const ros::WallTime now = ros::WallTime::now();
+        const double error_m =  // outside the lock: the diagnostics callback need not wait
+            poseError(loaded.source, tf2::transformToEigen(m->transform), loaded.T_target_source)
+                .mean_distance;
         std::lock_guard<std::mutex> lock(mutex);
         const auto it = sent.find(m->header.stamp);
         if (it == sent.end()) return;
-        const double error_m =
-            poseError(loaded.source, tf2::transformToEigen(m->transform), loaded.T_target_source)
-                .mean_distance;
         samples.push_back({ready_points, (now - it->second).toSec() * 1000.0, error_m});
         sent.erase(it);
       });

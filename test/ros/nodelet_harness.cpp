@@ -344,8 +344,12 @@ bool NodeletHarness::lastTransformOnTf(double timeout_s, Eigen::Isometry3d* last
   *last = toEigen(all.back().transform);
   const ros::WallTime end = ros::WallTime::now() + ros::WallDuration(timeout_s);
   while (ros::ok() && ros::WallTime::now() < end) {
-    const Eigen::Isometry3d edge = lookup("dense_map", "sparse_map_aligned", timeout_s);
-    if ((edge.translation() - last->translation()).norm() < 1e-9) return true;
+    try {
+      const Eigen::Isometry3d edge = lookup("dense_map", "sparse_map_aligned", 0.1);
+      if ((edge.translation() - last->translation()).norm() < 1e-9) return true;
+    } catch (const tf2::TransformException&) {
+      // the edge is not on tf yet: keep waiting, within timeout_s
+    }
     ros::WallDuration(0.05).sleep();
   }
   return false;
