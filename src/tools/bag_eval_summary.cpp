@@ -5,6 +5,7 @@
 #include <map>
 #include <sstream>
 
+#include "pda_registration/tools/settings_flags.hpp"
 #include "pda_registration/tools/statistics.hpp"
 
 namespace pda_registration {
@@ -106,6 +107,66 @@ std::string summaryTable(const std::vector<SetSummary>& ranked, bool ground_trut
     table << std::defaultfloat;
   }
   return table.str();
+}
+
+std::string gridDescription(const CommandLine& cl, const std::vector<ParameterSet>& sets) {
+  std::ostringstream text;
+  text << sets.size() << " parameter set" << (sets.size() == 1 ? "" : "s") << ":";
+  for (size_t a = 0; a < gridFlagNames().size(); ++a) {
+    std::vector<std::string> values;
+    for (const ParameterSet& set : sets) {
+      if (std::find(values.begin(), values.end(), set.values[a]) == values.end()) {
+        values.push_back(set.values[a]);
+      }
+    }
+    text << " --" << gridFlagNames()[a] << ' ';
+    for (size_t i = 0; i < values.size(); ++i) text << (i ? "," : "") << values[i];
+  }
+  // The other registration flags the user changed, so the summary says what was run.
+  for (const std::string& flag : settingsFlagNames()) {
+    const bool grid =
+        std::find(gridFlagNames().begin(), gridFlagNames().end(), flag) != gridFlagNames().end();
+    if (!grid && cl.has(flag)) text << " --" << flag << ' ' << cl.text(flag);
+  }
+  return text.str();
+}
+
+std::string summaryMarkdown(const BagEvalOptions& options, const BagMaps& bag,
+                            const BagTransforms& transforms, const CommandLine& cl,
+                            const std::vector<ParameterSet>& sets,
+                            const std::vector<EvaluationRow>& rows, const RunCounts& counts) {
+  const bool ground_truth = transforms.hasGroundTruth();
+  std::ostringstream md;
+  md << "## pda_bag_eval: " << options.bag_path << "\n\n";
+  md << "- maps: " << options.topics.sparse << " (" << bag.messageCount(options.topics.sparse)
+     << " messages, " << counts.evaluated << " evaluated, " << counts.skipped.size()
+     << " skipped) onto " << options.topics.dense << " (" << bag.messageCount(options.topics.dense)
+     << " messages, " << counts.targets_indexed << " indexed in " << std::fixed
+     << std::setprecision(0) << counts.index_ms << " ms)\n";
+  md << "- seed: tf (" << counts.seeds_at_stamp << " at the sparse map's stamp, "
+     << counts.seeds_latest << " latest before it)";
+  if (ground_truth) {
+    md << ", median seed eq. 22 " << std::setprecision(4) << median(counts.seed_eq22) << " m";
+  }
+  md << std::defaultfloat << "\n";
+  if (ground_truth) {
+    md << "- ground truth: " << options.ground_truth_topic << "; ranked by success (eq. 22 < "
+       << options.success_threshold << " m), then median eq. 22\n";
+  } else {
+    md << "- ground truth: none"
+       << (options.ground_truth_topic.empty()
+               ? std::string(" (ignored)")
+               : " (no topic '" + options.ground_truth_topic + "' in the bag)")
+       << "; ranked by converged fraction, then median inlier fraction, then median time\n";
+  }
+  md << "- " << gridDescription(cl, sets) << "\n\n";
+  md << summaryTable(rankSets(sets, rows, ground_truth, options.success_threshold), ground_truth,
+                     options.success_threshold);
+  if (!counts.skipped.empty()) {
+    md << "\nSkipped:\n";
+    for (const std::string& skipped : counts.skipped) md << "- " << skipped << "\n";
+  }
+  return md.str();
 }
 
 }  // namespace pda_registration

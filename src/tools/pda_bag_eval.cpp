@@ -4,8 +4,6 @@
 // ranked best first (against the bag's ground truth when it has one).
 // Exit codes: 0 evaluated, 2 bad usage, an unreadable bag or nothing to evaluate.
 
-#include <unistd.h>
-
 #include <algorithm>
 #include <chrono>
 #include <fstream>
@@ -24,8 +22,8 @@
 #include "pda_registration/tools/bag_parameter_grid.hpp"
 #include "pda_registration/tools/bag_transforms.hpp"
 #include "pda_registration/tools/command_line.hpp"
+#include "pda_registration/tools/progress_line.hpp"
 #include "pda_registration/tools/settings_flags.hpp"
-#include "pda_registration/tools/statistics.hpp"
 
 using namespace pda_registration;
 
@@ -68,123 +66,6 @@ bool sameCloud(const sensor_msgs::PointCloud2& a, const sensor_msgs::PointCloud2
          a.is_bigendian == b.is_bigendian && a.fields == b.fields && a.data == b.data;
 }
 
-// "[ 12/40] set 3/8 message 4/5" on stderr: redrawn in place on a terminal, one line per
-// finished message otherwise, so logs stay readable.
-class Progress {
- public:
-  Progress(size_t total, size_t sets, size_t messages)
-      : total_(total), sets_(sets), messages_(messages), terminal_(isatty(STDERR_FILENO) != 0) {}
-
-  void starting(size_t set, size_t message) {
-    if (!terminal_) return;
-    std::cerr << "\r" << line(done_ + set, set, message) << std::flush;
-    line_open_ = true;
-  }
-  void finished(size_t alignments, size_t message) {
-    done_ += alignments;
-    if (!terminal_) std::cerr << line(done_, sets_, message) << "\n";
-  }
-  /// Prints a message on its own line, clearing the progress line first.
-  void note(const std::string& text) {
-    std::cerr << (line_open_ ? "\r\033[K" : "") << kToolName << ": "
-              << escapeControlCharacters(text) << "\n";
-    line_open_ = false;
-  }
-  void end() {
-    if (line_open_) std::cerr << "\n";
-    line_open_ = false;
-  }
-
- private:
-  std::string line(size_t done, size_t set, size_t message) const {
-    std::ostringstream text;
-    text << '[' << std::setw(static_cast<int>(std::to_string(total_).size())) << done << '/'
-         << total_ << "] set " << set << '/' << sets_ << " message " << message << '/' << messages_;
-    return text.str();
-  }
-
-  size_t total_, sets_, messages_, done_ = 0;
-  bool terminal_, line_open_ = false;
-};
-
-struct Options {
-  std::string bag_path;
-  MapTopics topics;
-  std::string ground_truth_topic = "/ground_truth";
-  bool ground_truth_topic_given = false;
-  double success_threshold = 0.05;
-  int max_messages = std::numeric_limits<int>::max();
-  std::string csv_path, summary_path;
-};
-
-// What the run did besides the rows, for the summary's preamble.
-struct RunCounts {
-  size_t evaluated = 0, seeds_at_stamp = 0, seeds_latest = 0, targets_indexed = 0;
-  double index_ms = 0.0;
-  std::vector<double> seed_eq22;
-  std::vector<std::string> skipped;  ///< "message N (t = ...): why"
-};
-
-std::string gridDescription(const CommandLine& cl, const std::vector<ParameterSet>& sets) {
-  std::ostringstream text;
-  text << sets.size() << " parameter set" << (sets.size() == 1 ? "" : "s") << ":";
-  for (size_t a = 0; a < gridFlagNames().size(); ++a) {
-    std::vector<std::string> values;
-    for (const ParameterSet& set : sets) {
-      if (std::find(values.begin(), values.end(), set.values[a]) == values.end()) {
-        values.push_back(set.values[a]);
-      }
-    }
-    text << " --" << gridFlagNames()[a] << ' ';
-    for (size_t i = 0; i < values.size(); ++i) text << (i ? "," : "") << values[i];
-  }
-  // The other registration flags the user changed, so the summary says what was run.
-  for (const std::string& flag : settingsFlagNames()) {
-    const bool grid =
-        std::find(gridFlagNames().begin(), gridFlagNames().end(), flag) != gridFlagNames().end();
-    if (!grid && cl.has(flag)) text << " --" << flag << ' ' << cl.text(flag);
-  }
-  return text.str();
-}
-
-std::string summaryMarkdown(const Options& options, const BagMaps& bag,
-                            const BagTransforms& transforms, const CommandLine& cl,
-                            const std::vector<ParameterSet>& sets,
-                            const std::vector<EvaluationRow>& rows, const RunCounts& counts) {
-  const bool ground_truth = transforms.hasGroundTruth();
-  std::ostringstream md;
-  md << "## pda_bag_eval: " << options.bag_path << "\n\n";
-  md << "- maps: " << options.topics.sparse << " (" << bag.messageCount(options.topics.sparse)
-     << " messages, " << counts.evaluated << " evaluated, " << counts.skipped.size()
-     << " skipped) onto " << options.topics.dense << " (" << bag.messageCount(options.topics.dense)
-     << " messages, " << counts.targets_indexed << " indexed in " << std::fixed
-     << std::setprecision(0) << counts.index_ms << " ms)\n";
-  md << "- seed: tf (" << counts.seeds_at_stamp << " at the sparse map's stamp, "
-     << counts.seeds_latest << " latest before it)";
-  if (ground_truth) {
-    md << ", median seed eq. 22 " << std::setprecision(4) << median(counts.seed_eq22) << " m";
-  }
-  md << std::defaultfloat << "\n";
-  if (ground_truth) {
-    md << "- ground truth: " << options.ground_truth_topic << "; ranked by success (eq. 22 < "
-       << options.success_threshold << " m), then median eq. 22\n";
-  } else {
-    md << "- ground truth: none"
-       << (options.ground_truth_topic.empty()
-               ? std::string(" (ignored)")
-               : " (no topic '" + options.ground_truth_topic + "' in the bag)")
-       << "; ranked by converged fraction, then median inlier fraction, then median time\n";
-  }
-  md << "- " << gridDescription(cl, sets) << "\n\n";
-  md << summaryTable(rankSets(sets, rows, ground_truth, options.success_threshold), ground_truth,
-                     options.success_threshold);
-  if (!counts.skipped.empty()) {
-    md << "\nSkipped:\n";
-    for (const std::string& skipped : counts.skipped) md << "- " << skipped << "\n";
-  }
-  return md.str();
-}
-
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -197,7 +78,7 @@ int main(int argc, char** argv) {
     return 0;
   }
 
-  Options options;
+  BagEvalOptions options;
   if (!cl.has("bag")) return usageError("--bag is required");
   options.bag_path = cl.text("bag");
   options.topics.dense = cl.text("dense-topic", options.topics.dense);
@@ -250,7 +131,7 @@ int main(int argc, char** argv) {
 
   const size_t messages =
       std::min(bag.messageCount(options.topics.sparse), static_cast<size_t>(options.max_messages));
-  Progress progress(sets.size() * messages, sets.size(), messages);
+  ProgressLine progress(kToolName, sets.size() * messages, sets.size(), messages);
   PdaRegistration registration(sets.front().parameters);
   // The target is indexed lazily: a dense map replaced before any sparse map needs it costs
   // nothing, and one index serves every set and every sparse map until the next dense map.
