@@ -1,24 +1,20 @@
 // pda_bag_eval run as a user runs it, on a small simulated office bag: ground truth recovered on
-// every message, one summary row per parameter set of a grid, skipped messages, one-line errors;
-// and the parameter grid and the ranking on their own.
+// every message, one summary row per parameter set of a grid, skipped messages, one-line errors.
+// The grid and the ranking on their own: bag_eval_grid_ranking_test.cpp.
 #include <gtest/gtest.h>
 #include <rosbag/bag.h>
 #include <std_msgs/String.h>
 
 #include <algorithm>
 #include <map>
-#include <regex>
 #include <set>
-#include <sstream>
 
 #include "pda_registration/core/error_metrics.hpp"
 #include "pda_registration/core/perturbation.hpp"
 #include "pda_registration/ros/point_cloud_conversion.hpp"
 #include "pda_registration/simulation/map_bag_writer.hpp"
 #include "pda_registration/simulation/map_simulation.hpp"
-#include "pda_registration/tools/bag_eval_summary.hpp"
-#include "pda_registration/tools/bag_parameter_grid.hpp"
-#include "pda_registration/tools/settings_flags.hpp"
+#include "test_support/bag_eval_output.hpp"
 #include "test_support/command_run.hpp"
 
 namespace pda_registration {
@@ -27,9 +23,12 @@ namespace {
 using simulation::MapBagOptions;
 using simulation::SimulatedMaps;
 using testing_support::CommandRun;
+using testing_support::Csv;
 using testing_support::lineCount;
+using testing_support::readCsv;
 using testing_support::readFile;
 using testing_support::runCommand;
+using testing_support::summaryRows;
 using testing_support::temporaryPath;
 
 constexpr double kSeedErrorDeg = 3.0, kSeedErrorM = 0.15;
@@ -65,70 +64,6 @@ const SimulatedBag& simulatedBag() {
 
 CommandRun runBagEval(const std::string& arguments) {
   return runCommand(PDA_BAG_EVAL_BINARY, arguments);
-}
-
-// A CSV file as rows of named fields (quoted fields may hold commas).
-struct Csv {
-  std::vector<std::string> header;
-  std::vector<std::map<std::string, std::string>> rows;
-  double number(size_t row, const std::string& column) const {
-    return std::stod(rows.at(row).at(column));
-  }
-};
-
-std::vector<std::string> splitCsvLine(const std::string& line) {
-  std::vector<std::string> fields(1);
-  bool quoted = false;
-  for (size_t i = 0; i < line.size(); ++i) {
-    const char c = line[i];
-    if (c == '"' && quoted && i + 1 < line.size() && line[i + 1] == '"') {
-      fields.back() += '"';
-      ++i;
-    } else if (c == '"') {
-      quoted = !quoted;
-    } else if (c == ',' && !quoted) {
-      fields.emplace_back();
-    } else {
-      fields.back() += c;
-    }
-  }
-  return fields;
-}
-
-Csv readCsv(const std::string& path) {
-  Csv csv;
-  std::istringstream in(readFile(path));
-  std::string line;
-  if (std::getline(in, line)) csv.header = splitCsvLine(line);
-  while (std::getline(in, line)) {
-    const std::vector<std::string> fields = splitCsvLine(line);
-    EXPECT_EQ(fields.size(), csv.header.size()) << line;
-    std::map<std::string, std::string> row;
-    for (size_t i = 0; i < fields.size() && i < csv.header.size(); ++i) {
-      row[csv.header[i]] = fields[i];
-    }
-    csv.rows.push_back(row);
-  }
-  return csv;
-}
-
-// The data rows of the summary's markdown table, as trimmed cells.
-std::vector<std::vector<std::string>> summaryRows(const std::string& markdown) {
-  std::vector<std::vector<std::string>> rows;
-  std::istringstream in(markdown);
-  std::string line;
-  const std::regex data_row(R"(^\| [0-9]+ \|.*)");
-  while (std::getline(in, line)) {
-    if (!std::regex_match(line, data_row)) continue;
-    std::vector<std::string> cells;
-    std::istringstream cell_stream(line.substr(1));
-    std::string cell;
-    while (std::getline(cell_stream, cell, '|')) {
-      cells.push_back(std::regex_replace(cell, std::regex("^ +| +$"), ""));
-    }
-    rows.push_back(cells);
-  }
-  return rows;
 }
 
 // The translation of a CSV row's estimate against the simulation's ground truth: checked here,
@@ -301,83 +236,6 @@ TEST(BagEval, BadArgumentsExitTwoWithOneLine) {
     EXPECT_NE(run.err.find(expected), std::string::npos) << run.err;
     EXPECT_TRUE(run.out.empty()) << run.out;
   }
-}
-
-// --- The grid and the ranking on their own ------------------------------------------------------
-
-std::vector<ParameterSet> gridFrom(std::vector<const char*> arguments, std::string* error) {
-  arguments.insert(arguments.begin(), "pda_bag_eval");
-  std::set<std::string> flags = settingsFlagNames();
-  CommandLine cl(flags, {});
-  std::vector<ParameterSet> sets;
-  if (!cl.parse(static_cast<int>(arguments.size()), arguments.data()) ||
-      !readParameterGrid(&cl, &sets)) {
-    *error = cl.error();
-  }
-  return sets;
-}
-
-TEST(ParameterGrid, ExpandsEveryCombinationFirstFlagSlowest) {
-  std::string error;
-  const auto sets =
-      gridFrom({"--k", "1,5", "--nu", "5,inf", "--radius", "0.5,0.50", "--runs", "7"}, &error);
-  ASSERT_TRUE(error.empty()) << error;
-  ASSERT_EQ(sets.size(), 4u);  // the duplicate radius counts once
-  const std::vector<std::pair<int, double>> expected = {
-      {1, 5.0},
-      {1, std::numeric_limits<double>::infinity()},
-      {5, 5.0},
-      {5, std::numeric_limits<double>::infinity()}};
-  for (size_t i = 0; i < sets.size(); ++i) {
-    EXPECT_EQ(sets[i].id, static_cast<int>(i) + 1);
-    EXPECT_EQ(sets[i].parameters.k, expected[i].first);
-    EXPECT_EQ(sets[i].parameters.nu, expected[i].second);
-    EXPECT_EQ(sets[i].parameters.radius, 0.5);
-    EXPECT_EQ(sets[i].parameters.max_runs, 7);  // a single-value flag applies to every set
-    EXPECT_EQ(sets[i].values.size(), gridFlagNames().size());
-  }
-  EXPECT_EQ(sets[1].values[1], "inf");
-
-  const auto defaults = gridFrom({}, &error);
-  ASSERT_EQ(defaults.size(), 1u);
-  EXPECT_EQ(defaults[0].parameters.k, RegistrationParameters().k);
-
-  gridFrom({"--k", "1,x"}, &error);
-  EXPECT_NE(error.find("--k: 'x'"), std::string::npos) << error;
-}
-
-EvaluationRow row(int set_id, double eq22, bool converged, double inliers, double time_ms) {
-  EvaluationRow r;
-  r.set_id = set_id;
-  r.has_ground_truth = true;
-  r.error.mean_distance = eq22;
-  r.result.converged = converged;
-  r.result.inlier_fraction = inliers;
-  r.result.time_ms = time_ms;
-  return r;
-}
-
-TEST(SummaryRanking, SuccessThenMedianErrorOrConvergedThenInliersThenTime) {
-  std::vector<ParameterSet> sets(4);
-  for (int i = 0; i < 4; ++i) {
-    sets[i].id = i + 1;
-    sets[i].values = {std::to_string(i + 1), "5", "1", "1000"};
-  }
-  const std::vector<EvaluationRow> rows = {
-      row(1, 0.010, true, 0.9, 10),  row(1, 0.200, true, 0.9, 10),   // 1/2 successes
-      row(2, 0.030, false, 0.5, 10), row(2, 0.040, false, 0.5, 10),  // 2/2, median 0.035
-      row(3, 0.020, true, 0.6, 50),  row(3, 0.045, true, 0.6, 50),   // 2/2, median 0.0325
-      row(4, 0.500, true, 0.6, 20),  row(4, 0.600, true, 0.6, 20)};  // 0/2
-  std::vector<int> order;
-  for (const SetSummary& s : rankSets(sets, rows, true, 0.05)) order.push_back(s.set.id);
-  EXPECT_EQ(order, (std::vector<int>{3, 2, 1, 4}));
-
-  // Without ground truth: converged 2/2 first (1, 3, 4), by inliers (1), then time (4 before 3).
-  order.clear();
-  const auto ranked = rankSets(sets, rows, false, 0.05);
-  for (const SetSummary& s : ranked) order.push_back(s.set.id);
-  EXPECT_EQ(order, (std::vector<int>{1, 4, 3, 2}));
-  EXPECT_EQ(summaryRows(summaryTable(ranked, false, 0.05)).size(), 4u);
 }
 
 }  // namespace
