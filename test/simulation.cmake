@@ -4,27 +4,33 @@ catkin_add_gtest(sensor_simulation_test sensor_simulation_test.cpp)
 target_compile_options(sensor_simulation_test PRIVATE ${PDA_WARNINGS})
 target_link_libraries(sensor_simulation_test pda_registration_simulation gtest_main)
 
-# The whole simulation, its bag and the pda_simulate tool (run as a user runs it).
+# The simulated cases (a small office, the lidar car park) and one perturbed alignment, shared
+# by the simulation and registration tests.
+add_library(pda_simulated_cases STATIC test_support/simulated_cases.cpp)
+target_compile_options(pda_simulated_cases PRIVATE ${PDA_WARNINGS})
+target_link_libraries(pda_simulated_cases pda_test_support pda_registration_simulation gtest)
+
+# The whole simulation: distortion, determinism, PDA on the simulated maps.
 catkin_add_gtest(map_simulation_test map_simulation_test.cpp)
 target_compile_options(map_simulation_test PRIVATE ${PDA_WARNINGS})
-# The bag test reads the bag back with rosbag::View.
-target_include_directories(map_simulation_test SYSTEM PRIVATE ${catkin_INCLUDE_DIRS})
-target_link_libraries(map_simulation_test
-  pda_test_support pda_registration_simulation gtest_main ${catkin_LIBRARIES})
-target_compile_definitions(map_simulation_test PRIVATE
+target_link_libraries(map_simulation_test pda_simulated_cases gtest_main)
+
+# What the simulation writes: its bag and the pda_simulate tool (run as a user runs it).
+catkin_add_gtest(map_simulation_files_test map_simulation_files_test.cpp)
+target_compile_options(map_simulation_files_test PRIVATE ${PDA_WARNINGS})
+# The bag tests read the bag back with rosbag::View.
+target_include_directories(map_simulation_files_test SYSTEM PRIVATE ${catkin_INCLUDE_DIRS})
+target_link_libraries(map_simulation_files_test
+  pda_simulated_cases gtest_main ${catkin_LIBRARIES})
+target_compile_definitions(map_simulation_files_test PRIVATE
   PDA_SIMULATE_BINARY="$<TARGET_FILE:pda_simulate>")
-add_dependencies(map_simulation_test pda_simulate)
+add_dependencies(map_simulation_files_test pda_simulate)
 
 # The pose covariance against Monte Carlo and the simulated office's exact ground truth.
 catkin_add_gtest(pose_covariance_test pose_covariance_test.cpp)
 target_compile_options(pose_covariance_test PRIVATE ${PDA_WARNINGS})
 target_link_libraries(pose_covariance_test
   pda_test_support pda_registration_simulation gtest_main)
-
-# The simulated lidar cases and one perturbed alignment, shared by the registration tests.
-add_library(pda_simulated_cases STATIC test_support/simulated_cases.cpp)
-target_compile_options(pda_simulated_cases PRIVATE ${PDA_WARNINGS})
-target_link_libraries(pda_simulated_cases pda_test_support pda_registration_simulation gtest)
 
 # Registration on the simulated outdoor and same-sensor lattice cases (no ROS needed).
 catkin_add_gtest(lattice_registration_test lattice_registration_test.cpp)

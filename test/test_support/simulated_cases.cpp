@@ -11,6 +11,14 @@ namespace testing_support {
 
 using namespace simulation;
 
+MapSimulationOptions smallOfficeOptions(uint64_t seed) {
+  MapSimulationOptions options;
+  options.seed = seed;
+  options.kinect_frames = 3;
+  options.velodyne_revolutions = 1;
+  return options;
+}
+
 MapSimulationOptions carParkOptions(DenseSensor dense_sensor, bool same_pose) {
   MapSimulationOptions options;
   options.seed = 3;

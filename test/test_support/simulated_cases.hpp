@@ -1,5 +1,5 @@
 #pragma once
-// Simulated cases shared by the registration tests: the lidar car park and its same-sensor
+// Simulated cases shared by the tests: a small office, the lidar car park and its same-sensor
 // lattice, and one alignment from a perturbed ground truth.
 
 #include <cstdint>
@@ -10,6 +10,10 @@
 
 namespace pda_registration {
 namespace testing_support {
+
+/// The office from 3 Kinect frames and one VLP-16 revolution: small but complete maps, quick to
+/// simulate (pda_simulate --seed N --kinect-frames 3 --velodyne-revolutions 1).
+simulation::MapSimulationOptions smallOfficeOptions(uint64_t seed);
 
 /// The car park scanned by lidars only (maps kept whole, as pda_simulate keeps lidar maps).
 simulation::MapSimulationOptions carParkOptions(simulation::DenseSensor dense_sensor,
