@@ -12,36 +12,6 @@
 namespace pda_registration {
 namespace testing_support {
 
-namespace {
-template <class Parameter, class Value>
-void addParameter(std::vector<Parameter>* list, const std::string& name, const Value& value) {
-  Parameter parameter;
-  parameter.name = name;
-  parameter.value = value;
-  list->push_back(parameter);
-}
-}  // namespace
-
-ParameterChange& ParameterChange::set(const std::string& name, bool value) {
-  addParameter(&config_.bools, name, value);
-  return *this;
-}
-
-ParameterChange& ParameterChange::set(const std::string& name, int value) {
-  addParameter(&config_.ints, name, value);
-  return *this;
-}
-
-ParameterChange& ParameterChange::set(const std::string& name, double value) {
-  addParameter(&config_.doubles, name, value);
-  return *this;
-}
-
-ParameterChange& ParameterChange::set(const std::string& name, const std::string& value) {
-  addParameter(&config_.strs, name, value);
-  return *this;
-}
-
 NodeletHarness::NodeletHarness(const std::string& nodelet_name)
     : nodelet_name_(nodelet_name),
       dense_(node_.advertise<sensor_msgs::PointCloud2>("dense_cloud", 1, true)),
@@ -149,108 +119,6 @@ bool NodeletHarness::publishSeed(const Eigen::Isometry3d& T, const std::string& 
   return false;
 }
 
-bool NodeletHarness::waitFor(const std::function<bool()>& condition, double timeout_s) {
-  const ros::WallTime end = ros::WallTime::now() + ros::WallDuration(timeout_s);
-  while (ros::ok() && ros::WallTime::now() < end) {
-    {
-      std::lock_guard<std::mutex> lock(mutex_);
-      if (condition()) return true;
-    }
-    ros::WallDuration(0.02).sleep();
-  }
-  std::lock_guard<std::mutex> lock(mutex_);
-  return condition();
-}
-
-bool NodeletHarness::waitForNextTransform(double timeout_s) {
-  return waitForTransformsBeyond(transformCount(), timeout_s);
-}
-
-bool NodeletHarness::waitForTransformsBeyond(size_t count, double timeout_s) {
-  return waitFor([this, count] { return transforms_.size() > count; }, timeout_s);
-}
-
-bool NodeletHarness::waitForWarnContaining(const std::string& text, double timeout_s) {
-  return waitFor(
-      [this, &text] {
-        for (const std::string& w : warnings_) {
-          if (w.find(text) != std::string::npos) return true;
-        }
-        return false;
-      },
-      timeout_s);
-}
-
-bool NodeletHarness::waitForLogContaining(const std::string& text, double timeout_s) {
-  return waitFor(
-      [this, &text] {
-        for (const std::string& line : logs_) {
-          if (line.find(text) != std::string::npos) return true;
-        }
-        return false;
-      },
-      timeout_s);
-}
-
-bool NodeletHarness::waitForOutputConnections(double timeout_s) {
-  const ros::WallTime end = ros::WallTime::now() + ros::WallDuration(timeout_s);
-  while (ros::ok() && ros::WallTime::now() < end) {
-    if (transform_.getNumPublishers() > 0 && diagnostics_.getNumPublishers() > 0) return true;
-    ros::WallDuration(0.05).sleep();
-  }
-  return false;
-}
-
-bool NodeletHarness::waitForConnections(double timeout_s) {
-  const ros::WallTime end = ros::WallTime::now() + ros::WallDuration(timeout_s);
-  while (ros::ok() && ros::WallTime::now() < end) {
-    // /rosout counts this test process itself as one publisher: wait for a second one.
-    if (dense_.getNumSubscribers() > 0 && sparse_.getNumSubscribers() > 0 &&
-        transform_.getNumPublishers() > 0 && rosout_.getNumPublishers() > 1) {
-      return true;
-    }
-    ros::WallDuration(0.05).sleep();
-  }
-  ROS_ERROR("connections: dense %u, sparse %u subscribers; ~transform %u, /rosout %u publishers",
-            dense_.getNumSubscribers(), sparse_.getNumSubscribers(), transform_.getNumPublishers(),
-            rosout_.getNumPublishers());
-  return false;
-}
-
-bool NodeletHarness::waitForTransformStamped(const ros::Time& stamp, double timeout_s,
-                                             geometry_msgs::TransformStamped* found) {
-  return waitFor(
-      [&] {
-        for (auto it = transforms_.rbegin(); it != transforms_.rend(); ++it) {
-          if (it->header.stamp == stamp) return *found = *it, true;
-        }
-        return false;
-      },
-      timeout_s);
-}
-
-bool NodeletHarness::waitForMarkersStamped(const ros::Time& stamp, double timeout_s,
-                                           visualization_msgs::MarkerArray* found) {
-  return waitFor(
-      [&] {
-        for (auto it = markers_received_.rbegin(); it != markers_received_.rend(); ++it) {
-          if (!it->markers.empty() && it->markers.front().header.stamp == stamp) {
-            return *found = *it, true;
-          }
-        }
-        return false;
-      },
-      timeout_s);
-}
-
-bool NodeletHarness::waitForMarkersBeyond(size_t count, double timeout_s) {
-  return waitFor([this, count] { return markers_received_.size() > count; }, timeout_s);
-}
-
-bool NodeletHarness::waitForPosesBeyond(size_t count, double timeout_s) {
-  return waitFor([this, count] { return poses_.size() > count; }, timeout_s);
-}
-
 size_t NodeletHarness::transformCount() {
   std::lock_guard<std::mutex> lock(mutex_);
   return transforms_.size();
@@ -282,27 +150,6 @@ std::string NodeletHarness::diagnosticValue(const std::string& key) {
     if (entry.key == key) return entry.value;
   }
   return "";
-}
-
-bool NodeletHarness::waitForFreshDiagnostics(double timeout_s) {
-  const size_t before = diagnosticsCount();
-  return waitFor([this, before] { return diagnostics_received_.size() > before; }, timeout_s);
-}
-
-bool NodeletHarness::waitForAcceptedToMatchTransforms(double timeout_s, std::string* detail) {
-  const ros::WallTime end = ros::WallTime::now() + ros::WallDuration(timeout_s);
-  std::string accepted;
-  size_t before = 0, after = 0;
-  while (ros::ok() && ros::WallTime::now() < end) {
-    before = transformCount();
-    if (!waitForFreshDiagnostics((end - ros::WallTime::now()).toSec())) break;
-    accepted = diagnosticValue("accepted");
-    after = transformCount();
-    if (before == after && accepted == std::to_string(after)) return true;
-  }
-  *detail = "diagnostics last said accepted = \"" + accepted + "\" while " +
-            std::to_string(before) + ".." + std::to_string(after) + " transforms had arrived";
-  return false;
 }
 
 geometry_msgs::PoseWithCovarianceStamped NodeletHarness::lastPose() {
@@ -338,21 +185,14 @@ Eigen::Isometry3d NodeletHarness::lookup(const std::string& parent, const std::s
       tf_buffer_.lookupTransform(parent, child, stamp, ros::Duration(timeout_s)));
 }
 
-bool NodeletHarness::lastTransformOnTf(double timeout_s, Eigen::Isometry3d* last) {
-  const std::vector<geometry_msgs::TransformStamped> all = transforms();
-  if (all.empty()) return false;
-  *last = toEigen(all.back().transform);
-  const ros::WallTime end = ros::WallTime::now() + ros::WallDuration(timeout_s);
-  while (ros::ok() && ros::WallTime::now() < end) {
-    try {
-      const Eigen::Isometry3d edge = lookup("dense_map", "sparse_map_aligned", 0.1);
-      if ((edge.translation() - last->translation()).norm() < 1e-9) return true;
-    } catch (const tf2::TransformException&) {
-      // the edge is not on tf yet: keep waiting, within timeout_s
-    }
-    ros::WallDuration(0.05).sleep();
+::testing::AssertionResult loadCaseAndConnect(NodeletHarness* harness, const std::string& case_name,
+                                              SharedCase* data) {
+  std::string error;
+  if (!loadSharedCase(case_name, data, &error)) return ::testing::AssertionFailure() << error;
+  if (!harness->waitForConnections(20.0)) {
+    return ::testing::AssertionFailure() << "the nodelet did not connect within 20 s";
   }
-  return false;
+  return ::testing::AssertionSuccess();
 }
 
 Eigen::Isometry3d toEigen(const geometry_msgs::Transform& t) {

@@ -1,12 +1,12 @@
 #pragma once
 // Test-side companion of the map-alignment nodelet for rostest: publishes clouds and seeds the
 // way a robot stack would, records everything the nodelet publishes (and its WARNs on /rosout),
-// and waits for it with timeouts.
+// and waits for it with timeouts (the waits: nodelet_harness_waits.cpp).
 
 #include <diagnostic_msgs/DiagnosticArray.h>
-#include <dynamic_reconfigure/Config.h>
 #include <geometry_msgs/PoseWithCovarianceStamped.h>
 #include <geometry_msgs/TransformStamped.h>
+#include <gtest/gtest.h>
 #include <ros/ros.h>
 #include <rosgraph_msgs/Log.h>
 #include <sensor_msgs/PointCloud2.h>
@@ -21,27 +21,12 @@
 #include <string>
 #include <vector>
 
+#include "parameter_change.hpp"
 #include "pda_registration/core/point_list.hpp"
+#include "test_support/shared_data.hpp"
 
 namespace pda_registration {
 namespace testing_support {
-
-/// A dynamic_reconfigure request built up one parameter at a time:
-/// harness.reconfigure(ParameterChange().set("k", 3).set("solver", "ceres")).
-class ParameterChange {
- public:
-  ParameterChange& set(const std::string& name, bool value);
-  ParameterChange& set(const std::string& name, int value);
-  ParameterChange& set(const std::string& name, double value);
-  ParameterChange& set(const std::string& name, const std::string& value);
-  ParameterChange& set(const std::string& name, const char* value) {
-    return set(name, std::string(value));
-  }
-  const dynamic_reconfigure::Config& config() const { return config_; }
-
- private:
-  dynamic_reconfigure::Config config_;
-};
 
 class NodeletHarness {
  public:
@@ -135,6 +120,11 @@ class NodeletHarness {
   std::vector<std::string> warnings_, logs_;
   std::vector<diagnostic_msgs::DiagnosticStatus> diagnostics_received_;
 };
+
+/// The start of most nodelet tests: loads `case_name` of ../shared/data into `data` and waits
+/// until the nodelet is connected to `harness` (20 s at most).
+::testing::AssertionResult loadCaseAndConnect(NodeletHarness* harness, const std::string& case_name,
+                                              SharedCase* data);
 
 /// geometry_msgs/Transform as an isometry.
 Eigen::Isometry3d toEigen(const geometry_msgs::Transform& transform);
