@@ -32,11 +32,9 @@ double translationGap(const Eigen::Isometry3d& a, const Eigen::Isometry3d& b) {
 }
 
 TEST(NodeletCorrectionEdge, HoldsTheCorrectionWhileOdometryMoves) {
-  testing_support::SharedCase data;
-  std::string error;
-  ASSERT_TRUE(testing_support::loadSharedCase("room_scan", &data, &error)) << error;
   testing_support::NodeletHarness harness("pda_registration");
-  ASSERT_TRUE(harness.waitForConnections(20.0));
+  testing_support::SharedCase data;
+  ASSERT_TRUE(testing_support::loadCaseAndConnect(&harness, "room_scan", &data));
 
   // map -> dense_map: the dense map placed in the robot's map frame.
   const Eigen::Isometry3d T_map_dense =

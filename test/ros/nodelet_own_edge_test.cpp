@@ -12,11 +12,9 @@ namespace pda_registration {
 namespace {
 
 TEST(NodeletOwnEdge, SeedsFromInitialTransformThenFromItsOwnEstimate) {
-  testing_support::SharedCase data;
-  std::string error;
-  ASSERT_TRUE(testing_support::loadSharedCase("room_scan", &data, &error)) << error;
   testing_support::NodeletHarness harness("pda_registration");
-  ASSERT_TRUE(harness.waitForConnections(20.0));
+  testing_support::SharedCase data;
+  ASSERT_TRUE(testing_support::loadCaseAndConnect(&harness, "room_scan", &data));
   harness.publishDense(data.target, "dense_map");
   ros::WallDuration(1.5).sleep();
 

@@ -22,11 +22,9 @@ using testing_support::NodeletHarness;
 using testing_support::toEigen;
 
 TEST(NodeletSharedManager, OtherNodeletsKeepFlowingWhileAligning) {
-  testing_support::SharedCase data;
-  std::string error;
-  ASSERT_TRUE(testing_support::loadSharedCase("factory_p64", &data, &error)) << error;
   NodeletHarness harness("pda_registration");
-  ASSERT_TRUE(harness.waitForConnections(20.0));
+  testing_support::SharedCase data;
+  ASSERT_TRUE(loadCaseAndConnect(&harness, "factory_p64", &data));
 
   ros::NodeHandle node;
   ros::Publisher heartbeat = node.advertise<std_msgs::Header>("/heartbeat_relay/input", 100);

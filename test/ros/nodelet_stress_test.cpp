@@ -69,11 +69,9 @@ InputCounts inputCounts(const diagnostic_msgs::DiagnosticStatus& status) {
 TEST(NodeletStress, StaysResponsiveDropsStaleInputsAndKeepsMemoryFlat) {
   ros::NodeHandle node, private_node("~");
   const double duration = private_node.param("duration", 30.0);
-  testing_support::SharedCase data;
-  std::string error;
-  ASSERT_TRUE(testing_support::loadSharedCase("factory_p64", &data, &error)) << error;
   NodeletHarness harness("pda_registration");
-  ASSERT_TRUE(harness.waitForConnections(20.0));
+  testing_support::SharedCase data;
+  ASSERT_TRUE(loadCaseAndConnect(&harness, "factory_p64", &data));
 
   std::mutex mutex;
   std::vector<ros::WallTime> tf_times, diagnostics_times;

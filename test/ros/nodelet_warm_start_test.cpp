@@ -39,11 +39,9 @@ struct Answer {
 }
 
 TEST(NodeletWarmStart, StartsFromTheLastCorrectionUnlessSwitchedOff) {
-  testing_support::SharedCase data;
-  std::string error;
-  ASSERT_TRUE(testing_support::loadSharedCase("room_scan", &data, &error)) << error;
   NodeletHarness harness("pda_registration");
-  ASSERT_TRUE(harness.waitForConnections(20.0));
+  testing_support::SharedCase data;
+  ASSERT_TRUE(loadCaseAndConnect(&harness, "room_scan", &data));
   const Eigen::Isometry3d seed = data.T_target_source * randomPerturbation(5.0, 0.25, 4);
   ASSERT_TRUE(harness.publishSeed(seed, "dense_map", "sparse_map"));
   harness.publishDense(data.target, "dense_map");
