@@ -215,12 +215,16 @@ TEST(TargetMap, GrowingMapIsExtendedAndRegistersExactlyLikeARebuild) {
   std::string error;
   ASSERT_TRUE(testing_support::loadSharedCase("room_scan", &room, &error)) << error;
   const size_t half = room.target.size() / 2;
-  PdaRegistration growing;
+  // Indexed by setTarget, as the nodelet's keeper does (it thins a map itself, so that its index
+  // can be extended; target_subset would index voxel means afresh).
+  RegistrationParameters p;
+  p.target_subset = false;
+  PdaRegistration growing(p);
   ASSERT_TRUE(growing.setTarget(PointList(room.target.begin(), room.target.begin() + half)));
   const auto first = growing.target();
   ASSERT_TRUE(growing.setTarget(room.target));
   ASSERT_TRUE(growing.target()->extends(*first));
-  PdaRegistration rebuilt;
+  PdaRegistration rebuilt(p);
   ASSERT_TRUE(rebuilt.setTarget(room.target));
   const Eigen::Isometry3d seed = room.T_target_source * randomPerturbation(3.0, 0.15, 9);
   const RegistrationResult a = growing.align(room.source, seed);

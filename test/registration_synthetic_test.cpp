@@ -177,7 +177,12 @@ TEST(SyntheticRegistration, TargetIndexIsBuiltOnceAndReused) {
   p.radius = 0.5;
   PdaRegistration registration(p);
   ASSERT_TRUE(registration.setTarget(c.target));
+  // With target_subset (default) the first source decides how the target is indexed.
+  EXPECT_EQ(registration.target(), nullptr);
+  ASSERT_TRUE(registration.align(c.source, c.T_target_source).converged);
   const std::shared_ptr<const TargetIndex> index = registration.target();
+  ASSERT_NE(index, nullptr);
+  EXPECT_EQ(index->size(), c.target.size()) << "a source within the budget gets the whole target";
   for (uint64_t seed = 1; seed <= 3; ++seed) {
     const RegistrationResult r =
         registration.align(c.source, c.T_target_source * randomPerturbation(2.0, 0.1, seed));

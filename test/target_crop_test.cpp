@@ -129,6 +129,7 @@ TEST_F(TargetCrop, SourceOutsideTheMapIsNoOverlap) {
 TEST_F(TargetCrop, SmallTargetsAndDisabledCroppingIndexTheWholeCloud) {
   RegistrationParameters p = croppingParameters();
   p.crop_above_points = 0;  // never crop
+  p.target_subset = false;  // every point indexed by setTarget (the subset waits for a source)
   PdaRegistration whole(p);
   ASSERT_TRUE(whole.setTarget(tiles_->points));
   EXPECT_EQ(whole.targetIndexBuilds(), 1u) << "indexed by setTarget";

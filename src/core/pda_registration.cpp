@@ -14,6 +14,7 @@
 #include "pda_registration/core/nearest_rotation.hpp"
 #include "pda_registration/core/point_filter.hpp"
 #include "pda_registration/core/pose_covariance.hpp"
+#include "pda_registration/core/representative_subset.hpp"
 #include "pda_registration/core/run_extrapolation.hpp"
 #include "pda_registration/core/run_rest.hpp"
 #include "pda_registration/core/source_budget.hpp"
@@ -50,18 +51,35 @@ constexpr double kExtrapolationSigmas = 2.0;
 PdaRegistration::PdaRegistration(const RegistrationParameters& parameters)
     : parameters_(parameters) {}
 
+void PdaRegistration::followSourceSpacing(const PointList& source, bool budgeted) {
+  if (!parameters_.target_subset) return;
+  source_seen_ = true;
+  // Only a source thinned to the budget asks for it: a sparse sensor's own points each need the
+  // target's full detail (a 2600-point scan of a 4-cm room: 1.35 cm whole, 3.2 cm at its spacing).
+  const double spacing = budgeted ? sampleSpacing(source) : 0.0;
+  if (!(spacing > 0.0) || !std::isfinite(spacing)) {
+    subset_voxel_ = 0.0;
+  } else if (!subsetVoxelHolds(subset_voxel_, spacing)) {
+    subset_voxel_ = spacing;
+  }
+}
+
 void PdaRegistration::setParameters(const RegistrationParameters& parameters) {
   parameters_ = parameters;
   // A whole-cloud index follows a new voxel size right away (off the alignment's clock);
   // a cropped one is rebuilt by the next align(), which knows the region.
   const TargetIndexing how = indexing();
-  if (hasTarget() && !target_map_.croppingApplies(how)) target_map_.prepare(how, AlignedBox());
+  const bool awaits_source = parameters_.target_subset && !source_seen_;
+  if (hasTarget() && !target_map_.croppingApplies(how) && !awaits_source) {
+    target_map_.prepare(how, AlignedBox());
+  }
 }
 
 TargetIndexing PdaRegistration::indexing() const {
   TargetIndexing indexing;
   const double voxel = parameters_.target_voxel_size;
   indexing.voxel_size = voxel > 0.0 && std::isfinite(voxel) ? voxel : 0.0;
+  indexing.subset_voxel = parameters_.target_subset ? subset_voxel_ : 0.0;
   indexing.normal_voxel_size = parameters_.normal_voxel_size;
   indexing.crop_above_points =
       parameters_.crop_above_points > 0 ? static_cast<size_t>(parameters_.crop_above_points) : 0;
@@ -72,6 +90,8 @@ bool PdaRegistration::setTarget(PointList target) {
   if (!target_map_.setCloud(std::move(target))) return false;
   const TargetIndexing how = indexing();
   if (target_map_.croppingApplies(how)) return true;  // indexed by align(), around each source
+  // Its subset needs a source's spacing: the first align() indexes it.
+  if (parameters_.target_subset && !source_seen_) return true;
   if (!target_map_.prepare(how, AlignedBox())) {
     target_map_.clear();
     return false;
@@ -147,9 +167,11 @@ RegistrationResult PdaRegistration::alignUnchecked(const PointList& source_input
   workspace_.search.forget();  // new points in the same memory, perhaps a new target
   result.source_points_dropped = removeNonFinitePoints(&source);
   if (p.source_voxel_size > 0.0) source = voxelDownsample(source, p.source_voxel_size);
+  bool budgeted_source = false;
   if (p.max_source_points > 0) {
     PointList budgeted = applySourceBudget(source, static_cast<size_t>(p.max_source_points));
-    if (!budgeted.empty()) source = std::move(budgeted);
+    budgeted_source = !budgeted.empty();
+    if (budgeted_source) source = std::move(budgeted);
   }
   result.source_points_used = source.size();
   if (source.size() < static_cast<size_t>(p.min_correspondences)) {
@@ -161,7 +183,9 @@ RegistrationResult PdaRegistration::alignUnchecked(const PointList& source_input
     return result;
   }
 
-  // A large target is indexed around the region this source can reach from its seed.
+  // A target much finer than a budgeted source samples it is indexed as its voxel means at the
+  // source's spacing; a large one around the region this source can reach from its seed.
+  followSourceSpacing(source, budgeted_source);
   const TargetIndexing how = indexing();
   AlignedBox reach;
   if (target_map_.croppingApplies(how)) {
@@ -177,6 +201,7 @@ RegistrationResult PdaRegistration::alignUnchecked(const PointList& source_input
   }
   if (target_map_.builds() != builds_before) result.target_index_ms = target_map_.lastBuildMs();
   result.target_cropped = target_map_.cropped();
+  result.target_subset_voxel = target_map_.subsetVoxel();
   const std::shared_ptr<const TargetIndex> index = target_map_.index();
   const std::shared_ptr<const SurfaceNormalMap> normal_map =
       target_map_.normals() ? target_map_.normals() : std::make_shared<const SurfaceNormalMap>();

@@ -53,6 +53,10 @@ double sampleSpacing(const PointList& cloud, size_t samples) {
   return spacing[spacing.size() / 2];
 }
 
+bool subsetVoxelHolds(double current, double spacing) {
+  return current > 0.0 && spacing > 0.0 && std::abs(std::log2(spacing / current)) <= 0.5;
+}
+
 bool RepresentativeSubset::update(const PointList& map) {
   bool continued = map_size_ > 0 && map.size() >= map_size_ &&
                    hashPoints(map, 0, map_size_, kHashStart) == map_hash_;

@@ -6,6 +6,7 @@
 #include <exception>
 
 #include "pda_registration/core/point_filter.hpp"
+#include "pda_registration/core/representative_subset.hpp"
 
 namespace pda_registration {
 namespace {
@@ -76,7 +77,9 @@ bool TargetMap::setCloud(PointList points) {
 }
 
 bool TargetMap::extend(PointList* points) {
-  if (!index_ || !have_indexing_ || indexing_.voxel_size > 0.0) return false;
+  // A downsampled or thinned index is made afresh (the nodelet's keeper extends its own subset).
+  if (!index_ || !have_indexing_ || indexing_.voxel_size > 0.0 || indexing_.subset_voxel > 0.0)
+    return false;
   const auto start = std::chrono::steady_clock::now();
   size_t from;  // first new point
   size_t index_from = index_->size();
@@ -146,6 +149,7 @@ void TargetMap::clear() {
   normals_.reset();
   have_indexing_ = false;
   cropped_ = false;
+  subset_voxel_ = 0.0;
 }
 
 bool TargetMap::prepare(const TargetIndexing& indexing, const AlignedBox& region) {
@@ -170,6 +174,7 @@ bool TargetMap::build(const TargetIndexing& indexing, const AlignedBox* crop) {
   normals_.reset();
   have_indexing_ = false;
   cropped_ = false;
+  subset_voxel_ = 0.0;
 
   PointList points;
   try {
@@ -194,16 +199,32 @@ bool TargetMap::build(const TargetIndexing& indexing, const AlignedBox* crop) {
         const Point q = p.cast<double>();
         if (!cropped_ || crop->contains(q)) points.push_back(q);
       }
-    } else if (indexing.voxel_size > 0.0) {
-      points = whole_;  // downsampled below; the full-resolution cloud stays for later changes
-    } else {
+    }
+    // The full-resolution cloud stays in whole_ when it is thinned (for later changes); read in
+    // place, not copied.
+    const PointList& input = compact_.empty() ? whole_ : points;
+    PointList thinned;
+    bool is_thinned = false;
+    if (indexing.voxel_size > 0.0 && std::isfinite(indexing.voxel_size)) {
+      thinned = voxelDownsample(input, indexing.voxel_size);
+      is_thinned = true;
+    }
+    if (indexing.subset_voxel > 0.0 && std::isfinite(indexing.subset_voxel)) {
+      const PointList& before = is_thinned ? thinned : input;
+      PointList averaged = voxelDownsample(before, indexing.subset_voxel);
+      if (static_cast<double>(before.size()) >=
+          kMuchFinerRedundancy * static_cast<double>(averaged.size())) {
+        thinned = std::move(averaged);
+        is_thinned = true;
+        subset_voxel_ = indexing.subset_voxel;
+      }
+    }
+    if (is_thinned) {
+      points = std::move(thinned);
+    } else if (compact_.empty()) {
       points = std::move(whole_);
       whole_ = PointList();
       index_owns_cloud_ = true;
-    }
-    if (indexing.voxel_size > 0.0 && std::isfinite(indexing.voxel_size)) {
-      points = voxelDownsample(points, indexing.voxel_size);
-      index_owns_cloud_ = false;
     }
     if (points.empty()) {
       if (index_owns_cloud_) index_owns_cloud_ = false;

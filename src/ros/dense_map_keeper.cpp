@@ -65,7 +65,7 @@ void DenseMapKeeper::noteSparseSpacing(double spacing) {
   if (!(spacing > 0.0) || !std::isfinite(spacing)) return;
   const double current = sparse_spacing_.load();
   // Scans of one sensor vary a little: only a real change re-indexes.
-  if (current > 0.0 && std::abs(std::log2(spacing / current)) <= 0.5) return;
+  if (subsetVoxelHolds(current, spacing)) return;
   sparse_spacing_ = spacing;
   reindexLatest();
 }

@@ -31,6 +31,9 @@ LiveParameters liveParametersFrom(const PdaRegistrationConfig& c) {
   p.min_support_fraction = c.min_support_fraction;
   p.threads = c.threads;
   p.max_source_points = c.max_source_points;
+  // The keeper indexes the dense map's subset itself (dense_subset), so that a growing map's
+  // index is extended rather than rebuilt; the core must not thin it again.
+  p.target_subset = false;
   live.acceptance.min_inlier_fraction = c.min_inlier_fraction;
   live.acceptance.max_correction_translation = c.max_correction_translation;
   live.acceptance.max_correction_rotation = c.max_correction_rotation_deg * M_PI / 180.0;

@@ -24,6 +24,7 @@ std::set<std::string> settingsFlagNames() {
           "min-correspondences",
           "min-support",
           "max-source",
+          "target-subset",
           "max-iterations",
           "ndt-resolution",
           "ndt-step-size",
@@ -91,6 +92,9 @@ std::string settingsFlagsHelp() {
        << "  --max-source N          align a random subsample of at most N source points, as the\n"
        << "                          nodelet's max_source_points; 0 = all (" << p.max_source_points
        << ")\n"
+       << "  --target-subset 0|1     index the target only as finely as the source (as\n"
+       << "                          aligned) samples it, when it is 2x finer; 0 = every point ("
+       << (p.target_subset ? 1 : 0) << ")\n"
        << "  --min-correspondences N fewer source points with candidates = failure ("
        << p.min_correspondences << ")\n"
        << "  --crop-above N          targets with more points are indexed only around the\n"
@@ -120,6 +124,7 @@ bool readSettingsFlags(CommandLine* cl, MethodSettings* settings,
     return skip.count(flag) > 0 || cl->number(flag, value, min, max);
   };
   const auto given = [&](const char* flag) { return skip.count(flag) == 0 && cl->has(flag); };
+  int target_subset = p.target_subset ? 1 : 0;
   if (!integer("k", &p.k, 1, 1000) || !number("radius", &p.radius, 1e-9, 1e9) ||
       !number("nu", &p.nu, 1e-6, inf) || !integer("runs", &p.max_runs, 1, 1000) ||
       !integer("em-iterations", &p.max_em_iterations, 1, 1000) ||
@@ -132,6 +137,7 @@ bool readSettingsFlags(CommandLine* cl, MethodSettings* settings,
       !integer("min-correspondences", &p.min_correspondences, 3, 100000000) ||
       !number("min-support", &p.min_support_fraction, 0.0, 1.0) ||
       !integer("max-source", &p.max_source_points, 0, 1000000000) ||
+      !integer("target-subset", &target_subset, 0, 1) ||
       !integer("max-iterations", &b.max_iterations, 1, 100000) ||
       !number("ndt-resolution", &b.ndt_resolution, 1e-6, 1e6) ||
       !number("ndt-step-size", &b.ndt_step_size, 1e-9, 1e6) ||
@@ -159,6 +165,7 @@ bool readSettingsFlags(CommandLine* cl, MethodSettings* settings,
     return cl->setError("--sigma-mode: " + quoted(cl->text("sigma-mode")) +
                         " is not estimated or fixed");
   }
+  p.target_subset = target_subset != 0;
   // The baselines share the inputs' limits: same radius, same voxel sizes.
   b.max_correspondence_distance = p.radius;
   b.source_voxel_size = p.source_voxel_size;

@@ -36,6 +36,9 @@ class PdaRegistration {
   /// Drops non-finite points and keeps the cloud. A target of up to crop_above_points points is
   /// downsampled (target_voxel_size) and indexed (kd-tree and surface normal map) here, once; a
   /// larger one is indexed by align() around the region each source can reach (target_map.hpp).
+  /// With target_subset, a source thinned to max_source_points is aligned to the target's voxel
+  /// means at its spacing (target_subset): until an align() has seen a source, the target is only
+  /// kept (align() indexes it); later targets are indexed here as the last source asked.
   /// Returns false (with the target cleared) when no finite point is left or indexing fails.
   bool setTarget(PointList target);
   bool hasTarget() const { return target_map_.cloudSize() > 0; }
@@ -64,7 +67,13 @@ class PdaRegistration {
                                   const Eigen::Isometry3d& T_target_source_initial,
                                   Associations* associations);
 
+  /// The subset voxel for `source` (as aligned; `budgeted`: thinned to max_source_points): its
+  /// spacing, or the current voxel while that still serves; 0 for a source aligned whole.
+  void followSourceSpacing(const PointList& source, bool budgeted);
+
   RegistrationParameters parameters_;
+  double subset_voxel_ = 0.0;  // target_subset: the budgeted sources' spacing (0: whole target)
+  bool source_seen_ = false;   // target_subset: whether subset_voxel_ has been decided yet
   TargetMap target_map_;
   RegistrationWorkspace workspace_;  // scratch memory kept between alignments
 };

@@ -21,6 +21,10 @@ namespace pda_registration {
 /// `samples` points spread over the cloud; 0 when the cloud has fewer than two distinct points.
 double sampleSpacing(const PointList& cloud, size_t samples = 1000);
 
+/// Whether a subset decided at `current` [length] still serves a source of spacing `spacing`:
+/// within a factor sqrt(2) (the scans of one sensor vary a little; only a real change re-indexes).
+bool subsetVoxelHolds(double current, double spacing);
+
 /// Map points per voxel from which a map counts as much finer than the voxel (it samples the
 /// surface at least twice as densely): below it, thinning would save little and cost detail.
 constexpr double kMuchFinerRedundancy = 2.0;

@@ -46,12 +46,16 @@ AlignedBox reachableRegion(const PointList& source, const Eigen::Isometry3d& T,
 /// How the index is built; a change of any field re-indexes on the next prepare().
 struct TargetIndexing {
   double voxel_size = 0.0;          ///< target downsampling before indexing (0 = off)
+  /// Index the representative subset at this voxel when the cloud is much finer than it
+  /// (representative_subset.hpp); 0 = every point.
+  double subset_voxel = 0.0;
   double normal_voxel_size = 0.15;  ///< finest voxel of the normal map
   /// Targets with more finite points than this are cropped to the source's reach (0 = never).
   size_t crop_above_points = 0;
 
   bool operator==(const TargetIndexing& o) const {
-    return voxel_size == o.voxel_size && normal_voxel_size == o.normal_voxel_size &&
+    return voxel_size == o.voxel_size && subset_voxel == o.subset_voxel &&
+           normal_voxel_size == o.normal_voxel_size &&
            crop_above_points == o.crop_above_points;
   }
 };
@@ -95,6 +99,8 @@ class TargetMap {
   std::shared_ptr<const TargetIndex> index() const { return index_; }
   std::shared_ptr<const SurfaceNormalMap> normals() const { return normals_; }
   bool cropped() const { return cropped_; }
+  /// The voxel of the indexed subset; 0 when every point (of the crop) is indexed.
+  double subsetVoxel() const { return subset_voxel_; }
   /// Wall time of the last (re)build [ms], and how many builds so far (for tests and reports).
   double lastBuildMs() const { return last_build_ms_; }
   size_t builds() const { return builds_; }
@@ -119,6 +125,7 @@ class TargetMap {
   bool have_indexing_ = false;
   TargetIndexing indexing_;
   bool cropped_ = false;
+  double subset_voxel_ = 0.0;
   AlignedBox indexed_region_;  // valid when cropped_
   double last_build_ms_ = 0.0;
   size_t builds_ = 0;
