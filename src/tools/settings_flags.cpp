@@ -92,8 +92,9 @@ std::string settingsFlagsHelp() {
        << "  --max-source N          align a random subsample of at most N source points, as the\n"
        << "                          nodelet's max_source_points; 0 = all (" << p.max_source_points
        << ")\n"
-       << "  --target-subset 0|1     index the target only as finely as the source (as\n"
-       << "                          aligned) samples it, when it is 2x finer; 0 = every point ("
+       << "  --target-subset 0|1     a source thinned to --max-source is aligned to the target's\n"
+       << "                          voxel means at its spacing, when the target is 2x finer;\n"
+       << "                          0 = every target point ("
        << (p.target_subset ? 1 : 0) << ")\n"
        << "  --min-correspondences N fewer source points with candidates = failure ("
        << p.min_correspondences << ")\n"

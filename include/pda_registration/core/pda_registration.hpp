@@ -37,8 +37,8 @@ class PdaRegistration {
   /// downsampled (target_voxel_size) and indexed (kd-tree and surface normal map) here, once; a
   /// larger one is indexed by align() around the region each source can reach (target_map.hpp).
   /// With target_subset, a source thinned to max_source_points is aligned to the target's voxel
-  /// means at its spacing (target_subset): until an align() has seen a source, the target is only
-  /// kept (align() indexes it); later targets are indexed here as the last source asked.
+  /// means at its spacing: until an align() has seen a source, the target is only kept (align()
+  /// indexes it); later targets are indexed here as the last source asked.
   /// Returns false (with the target cleared) when no finite point is left or indexing fails.
   bool setTarget(PointList target);
   bool hasTarget() const { return target_map_.cloudSize() > 0; }

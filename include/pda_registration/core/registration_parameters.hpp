@@ -66,11 +66,12 @@ struct RegistrationParameters {
   // --- Pre-processing ------------------------------------------------------------------------
   double source_voxel_size = 0.0;  ///< [length] 0 = keep every source point
   double target_voxel_size = 0.0;  ///< [length] 0 = keep every target point
-  /// Index the target only as finely as the source samples it: the first target point of every
-  /// voxel of the source's sample spacing as aligned (after the budget), when the target holds at
-  /// least 2 points per such voxel (representative_subset.hpp). A target much finer than that
-  /// (fused RGB-D fragments of 1-cm samples against a 15000-point budget) costs its index and
-  /// queries far more than it gives the candidate sets. false = index every target point.
+  /// The target's side of the budget: when the source was thinned to max_source_points, index the
+  /// target's voxel means on a grid of the thinned source's sample spacing, if the target holds at
+  /// least 2 points per occupied voxel. A target much finer than the points aligned (fused RGB-D
+  /// fragments of 1-cm samples against a 15000-point budget) costs its index and queries far more
+  /// than it gives the candidate sets. A source within the budget gets every target point (a
+  /// sparse sensor's own points need the map's detail). false = always every target point.
   bool target_subset = true;
   // --- Large targets ---------------------------------------------------------------------
   /// Targets with more finite points than this are indexed only around the region each source

@@ -30,7 +30,7 @@ struct RegistrationResult {
   size_t target_points_used = 0;             ///< target points indexed (after any crop)
   size_t target_points_total = 0;            ///< finite target points kept (before any crop)
   bool target_cropped = false;               ///< the index covers only the source's reach
-  double target_subset_voxel = 0.0;  ///< [length] voxel of the indexed subset (0: every point)
+  double target_subset_voxel = 0.0;  ///< [length] grid of the indexed voxel means (0: every point)
   /// The usual direction did not converge and the source is the denser cloud, so the target was
   /// aligned onto it and the answer inverted (alignment_direction.hpp); the statistics (sigma,
   /// inliers, candidates) are of that run.

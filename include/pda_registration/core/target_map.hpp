@@ -46,8 +46,8 @@ AlignedBox reachableRegion(const PointList& source, const Eigen::Isometry3d& T,
 /// How the index is built; a change of any field re-indexes on the next prepare().
 struct TargetIndexing {
   double voxel_size = 0.0;          ///< target downsampling before indexing (0 = off)
-  /// Index the representative subset at this voxel when the cloud is much finer than it
-  /// (representative_subset.hpp); 0 = every point.
+  /// Index the voxel means on this grid when the cloud holds at least kMuchFinerRedundancy
+  /// points per occupied voxel (representative_subset.hpp); 0 = every point.
   double subset_voxel = 0.0;
   double normal_voxel_size = 0.15;  ///< finest voxel of the normal map
   /// Targets with more finite points than this are cropped to the source's reach (0 = never).
@@ -99,7 +99,7 @@ class TargetMap {
   std::shared_ptr<const TargetIndex> index() const { return index_; }
   std::shared_ptr<const SurfaceNormalMap> normals() const { return normals_; }
   bool cropped() const { return cropped_; }
-  /// The voxel of the indexed subset; 0 when every point (of the crop) is indexed.
+  /// The grid of the indexed voxel means (subset_voxel); 0 when every point (of the crop) is.
   double subsetVoxel() const { return subset_voxel_; }
   /// Wall time of the last (re)build [ms], and how many builds so far (for tests and reports).
   double lastBuildMs() const { return last_build_ms_; }
