@@ -198,6 +198,30 @@ TEST(RunExtrapolation, LeavesTurningStepsAlone) {
   EXPECT_EQ(extrapolation.extrapolations(), 0);
 }
 
+// In the approach stage three steps must agree: the first agreeing pair only counts.
+TEST(RunExtrapolation, WaitsForThreeAgreeingStepsWhenAsked) {
+  pda_registration::RunExtrapolation extrapolation(
+      pda_registration::PoseStep(pda_registration::Point::Zero(), 1.0));
+  extrapolation.setAgreementsNeeded(2);
+  Eigen::Isometry3d before = Eigen::Isometry3d::Identity();
+  double x = 0.0, step = 0.1;
+  for (int run = 1; run <= 3; ++run) {
+    Eigen::Isometry3d after = Eigen::Isometry3d::Identity();
+    x += step;
+    step *= 0.5;  // shrinking steps, one way: linear convergence
+    after.translation() = Eigen::Vector3d(x, 0, 0);
+    const Eigen::Isometry3d next = extrapolation.next(before, after, 1e-6, 1e9);
+    if (run < 3) {
+      EXPECT_TRUE(next.isApprox(after)) << "run " << run;
+    } else {
+      // The tail of the third step (rho = 0.5: one more step) is taken.
+      EXPECT_NEAR(next.translation().x(), x + 0.025, 1e-12);
+    }
+    before = next;
+  }
+  EXPECT_EQ(extrapolation.extrapolations(), 1);
+}
+
 // The rest test (run_rest.hpp): runs that cycle between two poses come back on themselves and
 // are at rest; a slide of equally small steps one way, and a slide that zigzags, are not.
 namespace {

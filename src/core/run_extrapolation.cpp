@@ -17,17 +17,25 @@ Eigen::Isometry3d RunExtrapolation::next(const Eigen::Isometry3d& before,
   const double size = step.norm();
   if (!(size > min_step) || !step.allFinite()) {
     have_previous_ = false;
+    agreeing_ = 0;
     return after;
   }
   if (!have_previous_) {
     previous_ = step;
     have_previous_ = true;
+    agreeing_ = 0;
     return after;
   }
   const double cosine = step.dot(previous_) / (size * previous_.norm());
   const double ratio = size / previous_.norm();
   previous_ = step;
-  if (cosine < kSameDirection || ratio >= kMaxRatio) return after;
+  if (cosine < kSameDirection || ratio >= kMaxRatio) {
+    agreeing_ = 0;
+    return after;
+  }
+  ++agreeing_;
+  if (agreeing_ < agreements_needed_) return after;
+  agreeing_ = 0;
   // The tail rho + rho^2 + ... of the last step, then two fresh steps before the next one.
   const double factor = std::min({ratio / (1.0 - ratio), kMaxFactor, max_move / size});
   have_previous_ = false;
