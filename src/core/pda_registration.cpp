@@ -276,8 +276,9 @@ RegistrationResult PdaRegistration::alignUnchecked(const PointList& source_input
     extrapolated_size = active.size();
     // The approach chooses the basin, from steps as wide as sigma: there a tail is only taken
     // once three successive steps agree (two ratios both say "linear"), not two. Two were enough
-    // for an RGB-D fragment pair from 10 deg to be sent 0.2 m the wrong way at its second run
-    // (sigma 0.32 m) and slide 2.3 m off; the settle and refine stages keep two.
+    // for an RGB-D fragment pair from 10 deg to be pushed one more step (0.19 m) along its slide
+    // after its second run (sigma 0.32 m), past its basin's ridge, and to end 2.3 m off; the
+    // settle and refine stages keep two.
     extrapolation.setAgreementsNeeded(stage == Stage::kApproach ? 2 : 1);
     if (!stage_done && p.max_runs > 1) {
       state.T = extrapolation.next(T_run_start, state.T, stage_scale * p.translation_epsilon,
