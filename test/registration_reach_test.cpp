@@ -81,8 +81,8 @@ TEST(Reach, RgbdFragmentsAlignWithDefaultsFromTenDegrees) {
 
 // Seed 4's pair from this perturbation slid 2.3 m along the walkway, reported converged (rotation
 // right to 0.09 deg): the approach's second run was extrapolated from one ratio of two steps as
-// wide as sigma (0.38 and 0.19 m at sigma 0.32 m), past the ridge of the true basin. The approach now takes
-// a tail only when three steps agree (run_extrapolation.hpp); PCL's GICP found it from here too.
+// wide as sigma (0.38 and 0.19 m at sigma 0.32 m), past the ridge of the true basin. The approach
+// now takes a tail only when three steps agree (run_extrapolation.hpp); PCL's GICP found it too.
 TEST(Reach, RgbdFragmentsAreNotExtrapolatedOutOfTheirBasin) {
   MapSimulationOptions options;
   options.seed = 4;

@@ -20,10 +20,9 @@ Eigen::Isometry3d RunExtrapolation::next(const Eigen::Isometry3d& before,
     agreeing_ = 0;
     return after;
   }
-  if (!have_previous_) {
+  if (!have_previous_) {  // every path that forgets the last step also zeroes agreeing_
     previous_ = step;
     have_previous_ = true;
-    agreeing_ = 0;
     return after;
   }
   const double cosine = step.dot(previous_) / (size * previous_.norm());
