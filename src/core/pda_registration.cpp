@@ -294,14 +294,20 @@ RegistrationResult PdaRegistration::alignUnchecked(const PointList& source_input
       result.converged = true;  // at rest: judgeConvergence says what it is
       break;
     }
+    // Runs that cycle in place (run_rest.hpp) have come to rest as surely as a short step: that
+    // ends any stage. An approach on a map that covered a third of its scan cycled between two
+    // poses 1.4 mm apart (above its 10 epsilons) until the work bound, "not converged" at 5 mm.
+    const bool cycling = rest.cameBack(T_run_start, state.T);
     if (stage != Stage::kRefine) {
-      if (stage_done) {
+      if (stage_done || cycling) {
         stage = stage == Stage::kApproach ? Stage::kSettle : Stage::kRefine;
+        rest.reset();
+        extrapolation.reset();
       }
       continue;  // convergence is only declared in the refine stage
     }
-    // Converged: a run below the epsilons, or runs that cycle in place (run_rest.hpp).
-    if (isSmall(last_run_step, p) || rest.cameBack(T_run_start, state.T)) {
+    // Converged: a run below the epsilons, or runs that cycle in place.
+    if (isSmall(last_run_step, p) || cycling) {
       result.converged = true;
       break;
     }
