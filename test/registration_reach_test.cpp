@@ -96,9 +96,8 @@ TEST(Reach, RgbdFragmentsAreNotExtrapolatedOutOfTheirBasin) {
 
 // A growing SLAM map's first third (the office's first 1M Kinect points, in scan order) against
 // a whole VLP-16 revolution: from 0.5 deg / 3 cm the approach cycled between two poses 1.4 mm
-// apart, above its 10 epsilons, until the work bound (200 runs, "not converged" 5 mm off; the
-// nodelet's growing-map alignments spent their budget the same way). Runs that come back on
-// themselves now end the approach as they end the refine stage.
+// apart, above its 10 epsilons, until the work bound (200 runs, "not converged" 5 mm off). Runs
+// that come back on themselves now end the approach as they end the refine stage.
 TEST(Reach, AnApproachThatCyclesInPlaceEndsItsStage) {
   MapSimulationOptions options;
   options.dense_voxel_size = 0.0;
