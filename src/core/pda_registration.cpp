@@ -237,7 +237,6 @@ RegistrationResult PdaRegistration::alignUnchecked(const PointList& source_input
   const PoseStep step_metric = PoseStep::over(source);
   RunExtrapolation extrapolation(step_metric);
   RunRest rest(step_metric);
-  size_t extrapolated_size = 0;  // the active source's size when the steps were taken
   for (int run = 1; work < p.max_runs; ++run) {
     const PointList& active = stage == Stage::kApproach ? coarse_source : source;
     work += static_cast<double>(active.size()) / static_cast<double>(source.size());
@@ -272,8 +271,6 @@ RegistrationResult PdaRegistration::alignUnchecked(const PointList& source_input
     // (run_extrapolation.hpp), at most 2 sigma further, where the candidate sets are still
     // about the same (a longer jump traded lidar scans' reach for speed: car park from 10 deg,
     // 9 -> 7 of 10 at no limit, 9 at 2 sigma).
-    if (stage_done || active.size() != extrapolated_size) extrapolation.reset();
-    extrapolated_size = active.size();
     // The approach chooses the basin, from steps as wide as sigma: there a tail is only taken
     // once three successive steps agree (two ratios both say "linear"), not two. Two were enough
     // for an RGB-D fragment pair from 10 deg to be pushed one more step (0.19 m) along its slide
@@ -301,7 +298,7 @@ RegistrationResult PdaRegistration::alignUnchecked(const PointList& source_input
     if (stage != Stage::kRefine) {
       if (stage_done || cycling) {
         stage = stage == Stage::kApproach ? Stage::kSettle : Stage::kRefine;
-        rest.reset();
+        rest.reset();  // both look back over this stage's steps only
         extrapolation.reset();
       }
       continue;  // convergence is only declared in the refine stage
