@@ -20,6 +20,7 @@ add_library(pda_registration_ros
   src/ros/map_alignment_intake.cpp
   src/ros/map_alignment_nodelet.cpp
   src/ros/node_settings.cpp
+  src/ros/rate_budget.cpp
   src/ros/seed_lookup.cpp
   src/ros/tf_edge.cpp
 )

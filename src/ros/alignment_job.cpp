@@ -115,6 +115,10 @@ void AlignmentJob::run(const SparseJob& job, const LiveParameters& live) {
   // No more threads than the cores other processes leave idle (idle_cores.hpp).
   RegistrationParameters parameters = live.registration;
   parameters.threads = c_.idle_cores->threadsFor(parameters.threads);
+  // Beyond what fits the sparse clouds' period, fewer source points (rate_budget.hpp).
+  const size_t budget_cap = static_cast<size_t>(std::max(live.registration.max_source_points, 0));
+  parameters.max_source_points =
+      static_cast<int>(c_.rate_budget->budget(budget_cap, live.alignment_share));
   registration->setParameters(parameters);
 
   // Beyond max_source_points the core aligns an unbiased subsample (source_budget.hpp); a
@@ -135,6 +139,8 @@ void AlignmentJob::run(const SparseJob& job, const LiveParameters& live) {
         return verdict.accepted;
       });
   result.time_ms = attempts_ms;  // both attempts, when the warm one was retried
+  c_.rate_budget->noteAlignment(result.time_ms, result.source_points_used, budget_cap,
+                                live.alignment_share);
   if (retried) warm_start = "used, rejected; retried from the seed";
   if (verdict.accepted) {
     const Eigen::Isometry3d T_dense_sparse =
@@ -152,6 +158,8 @@ void AlignmentJob::run(const SparseJob& job, const LiveParameters& live) {
     s.roles_swapped = result.roles_swapped;
     s.source_points_used = result.source_points_used;
     s.source_points_received = source_points->size();
+    s.source_budget = static_cast<size_t>(parameters.max_source_points);
+    s.sparse_period_s = c_.rate_budget->period();
     s.threads_used = parameters.threads;
     s.warm_start = warm_start;
     if (retried) ++s.warm_start_retries;

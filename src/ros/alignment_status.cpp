@@ -78,6 +78,8 @@ void AlignmentStatus::fill(diagnostic_updater::DiagnosticStatusWrapper& status,
   status.add("index fold time [ms]", s.index_fold_ms);
   status.add("source points received", s.source_points_received);
   status.add("source points used", s.source_points_used);
+  status.add("source budget", s.source_budget);
+  status.add("sparse cloud period [ms]", 1e3 * s.sparse_period_s);
   status.add("threads used", s.threads_used);
   status.add("target cropped", s.target_cropped);
   status.add("roles swapped", s.roles_swapped);

@@ -46,6 +46,7 @@ LiveParameters liveParametersFrom(const PdaRegistrationConfig& c) {
   live.max_markers = static_cast<size_t>(std::max(c.max_markers, 0));
   live.dense_subset = c.dense_subset;
   live.warm_start = c.warm_start;
+  live.alignment_share = c.alignment_share;
   return live;
 }
 

@@ -24,7 +24,9 @@ void MapAlignmentNodelet::sparseCallback(const sensor_msgs::PointCloud2ConstPtr&
       return;
     }
     last_sparse_accepted_ = now;
-    if (queue_.putSparse({cloud, ros::WallTime::now()})) ++s.dropped_stale;
+    const ros::WallTime received = ros::WallTime::now();
+    rate_budget_.noteArrival(received.toSec());
+    if (queue_.putSparse({cloud, received})) ++s.dropped_stale;
   });
 }
 

@@ -57,7 +57,7 @@ void MapAlignmentNodelet::onInit() {
                                              nodeletLog(), [this] { return liveParameters(); });
   job_ = std::make_unique<AlignmentJob>(
       AlignmentJobContext{&settings_, tf_buffer_.get(), publisher_.get(), edges_.get(), &status_,
-                          keeper_.get(), &idle_cores_, nodeletLog(), sparse_topic, dense_topic});
+                          keeper_.get(), &idle_cores_, &rate_budget_, nodeletLog(), sparse_topic, dense_topic});
   worker_ = std::thread(&MapAlignmentNodelet::workerLoop, this);
   dense_subscriber_ = node.subscribe("dense_cloud", 2, &MapAlignmentNodelet::denseCallback, this);
   sparse_subscriber_ =

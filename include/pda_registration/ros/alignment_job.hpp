@@ -17,6 +17,7 @@
 #include "pda_registration/ros/edge_broadcaster.hpp"
 #include "pda_registration/ros/idle_cores.hpp"
 #include "pda_registration/ros/live_parameters.hpp"
+#include "pda_registration/ros/rate_budget.hpp"
 #include "pda_registration/ros/node_settings.hpp"
 #include "pda_registration/ros/seed_lookup.hpp"
 
@@ -36,6 +37,7 @@ struct AlignmentJobContext {
   AlignmentStatus* status;
   DenseMapKeeper* keeper;
   IdleCores* idle_cores;
+  RateBudget* rate_budget;
   NodeletLog log;
   std::string sparse_topic, dense_topic;
 };

@@ -48,6 +48,10 @@ struct AlignmentStatusValues {
   size_t index_folds = 0;
   // Source points of the last alignment: as received, and used (after the budget and filters).
   size_t source_points_received = 0, source_points_used = 0;
+  // The source budget that keeps up with the sparse clouds (ros/rate_budget.hpp) and the
+  // period it was fitted to (0: not measured yet).
+  size_t source_budget = 0;
+  double sparse_period_s = 0.0;
   int threads_used = 0;  ///< by the last alignment: at most `threads`, no more than idle cores
   // Whether the last alignment started from the seed corrected by the last accepted correction
   // (core/warm_start.hpp), or why not; and how often such a start was rejected and retried.

@@ -20,6 +20,9 @@ struct LiveParameters {
   /// Start each alignment from the seed corrected by the last accepted correction
   /// (core/warm_start.hpp), unless the node's own tf edge is part of the seed.
   bool warm_start = true;
+  /// The part of the sparse clouds' period an alignment may take (ros/rate_budget.hpp); 0: the
+  /// budget is max_source_points.
+  double alignment_share = 0.5;
 };
 
 LiveParameters liveParametersFrom(const PdaRegistrationConfig& config);

@@ -32,6 +32,7 @@
 #include "pda_registration/ros/dense_map_keeper.hpp"
 #include "pda_registration/ros/edge_broadcaster.hpp"
 #include "pda_registration/ros/idle_cores.hpp"
+#include "pda_registration/ros/rate_budget.hpp"
 #include "pda_registration/ros/latest_input_queue.hpp"
 #include "pda_registration/ros/live_parameters.hpp"
 #include "pda_registration/ros/node_settings.hpp"
@@ -83,6 +84,7 @@ class MapAlignmentNodelet : public nodelet::Nodelet {
   // Sampled every second by the diagnostics timer, so the alignments' thread count follows the
   // last second's load, not the whole time since the previous alignment (or start-up).
   IdleCores idle_cores_;
+  RateBudget rate_budget_;  // arrivals noted by the sparse callback, budgets by the job
   LatestInputQueue<sensor_msgs::PointCloud2ConstPtr, SparseJob> queue_;
   std::unique_ptr<DenseMapKeeper> keeper_;  // indexes dense maps on its own thread
   std::unique_ptr<AlignmentJob> job_;       // worker thread only
