@@ -1,7 +1,8 @@
 // pda_latency_probe: measures the nodelet's end-to-end latency, sparse cloud published ->
 // ~transform received, on a case folder (target.pcd, source.pcd, T_target_source.txt). Publishes
 // the dense map (latched) and a perturbed seed on tf once, then the sparse cloud --count times,
-// each after the previous result, and prints one JSON line with the median / p95 / max latency
+// each after the previous result and no sooner than a sensor at --rate Hz (10) would send it
+// (the nodelet fits its source budget to that period, ros/rate_budget.hpp), and prints one JSON line with the median / p95 / max latency
 // and the error of the last estimate. With --tile N the dense map is N x N copies of the case's
 // target (the middle one in place; e.g. --tile 7 on room_scan: 5.5M points), and the JSON adds
 // what the nodelet's diagnostics say of it: points indexed, cropping, resident memory. Needs a
@@ -44,17 +45,17 @@ int fail(const std::string& message) { return reportError("pda_latency_probe", m
 
 int main(int argc, char** argv) {
   ros::init(argc, argv, "pda_latency_probe", ros::init_options::AnonymousName);
-  CommandLine cl({"case", "count", "nodelet", "resend-after", "timeout", "tile"}, {"help"});
+  CommandLine cl({"case", "count", "nodelet", "rate", "resend-after", "timeout", "tile"}, {"help"});
   if (!cl.parse(argc, argv)) return fail(cl.error());
   if (cl.has("help") || !cl.has("case")) {
     std::cout << "usage: pda_latency_probe --case DIR [--count 20] [--nodelet pda_registration]"
-                 " [--timeout 60] [--resend-after 5] [--tile N]\n";
+                 " [--rate 10] [--timeout 60] [--resend-after 5] [--tile N]\n";
     return cl.has("help") ? 0 : 2;
   }
   int count = 20, tile = 1;
-  double timeout = 60.0, resend_after = 5.0;
+  double timeout = 60.0, resend_after = 5.0, rate = 10.0;
   if (!cl.integer("count", &count, 1, 100000) || !cl.number("timeout", &timeout, 0.1, 3600) ||
-      !cl.number("resend-after", &resend_after, 0.01, 3600) ||
+      !cl.number("resend-after", &resend_after, 0.01, 3600) || !cl.number("rate", &rate, 0.01, 1000) ||
       !cl.integer("tile", &tile, 1, 101)) {
     return fail(cl.error());
   }
@@ -177,7 +178,15 @@ int main(int argc, char** argv) {
   header.frame_id = "sparse_map";
   const sensor_msgs::PointCloud2 cloud = toPointCloud2(source, header);
   int resent = 0;
+  ros::WallTime last_send;
   for (int i = 0; i < count && ros::ok(); ++i) {
+    // A sensor's period between clouds, even when the answer came sooner.
+    if (!last_send.isZero()) {
+      const ros::WallDuration wait =
+          last_send + ros::WallDuration(1.0 / rate) - ros::WallTime::now();
+      if (wait > ros::WallDuration(0.0)) wait.sleep();
+    }
+    last_send = ros::WallTime::now();
     {
       std::lock_guard<std::mutex> lock(mutex);
       sent.clear();
