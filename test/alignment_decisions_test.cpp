@@ -3,6 +3,7 @@
 // its result may replace the last good estimate (the acceptance gate).
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <limits>
 #include <vector>
 
@@ -37,6 +38,33 @@ TEST(AlignmentGate, RejectsUnconvergedPoorAndWildResults) {
   failed.converged = false;
   failed.reason = "no overlap";
   EXPECT_NE(judgeAlignment(failed, seed, thresholds).reason.find("no overlap"), std::string::npos);
+}
+
+// The covariance's expected error (1 sigma, sqrt of each block's trace) against the stack's
+// limits: off by default, and each limit rejects with its reason.
+TEST(AlignmentGate, RejectsResultsThatExpectMoreErrorThanAsked) {
+  RegistrationResult result;
+  result.converged = true;
+  result.inlier_fraction = 0.8;
+  // 3 cm in each of x, y, z: sqrt(3) * 3 = 5.2 cm expected; 0.1 deg about each axis: 0.17 deg.
+  result.covariance.diagonal() << 9e-4, 9e-4, 9e-4, std::pow(0.1 * M_PI / 180.0, 2),
+      std::pow(0.1 * M_PI / 180.0, 2), std::pow(0.1 * M_PI / 180.0, 2);
+  const Eigen::Isometry3d seed = Eigen::Isometry3d::Identity();
+  AcceptanceThresholds thresholds;
+  EXPECT_TRUE(judgeAlignment(result, seed, thresholds).accepted) << "no limit by default";
+  thresholds.max_expected_translation = 0.06;
+  thresholds.max_expected_rotation = 0.2 * M_PI / 180.0;
+  EXPECT_TRUE(judgeAlignment(result, seed, thresholds).accepted);
+  thresholds.max_expected_translation = 0.05;
+  const Verdict translation = judgeAlignment(result, seed, thresholds);
+  EXPECT_FALSE(translation.accepted);
+  EXPECT_NE(translation.reason.find("max_expected_error "), std::string::npos)
+      << translation.reason;
+  thresholds.max_expected_translation = 0.0;
+  thresholds.max_expected_rotation = 0.15 * M_PI / 180.0;
+  const Verdict rotation = judgeAlignment(result, seed, thresholds);
+  EXPECT_FALSE(rotation.accepted);
+  EXPECT_NE(rotation.reason.find("max_expected_error_deg"), std::string::npos) << rotation.reason;
 }
 
 // The correction is kept on the dense side: it turns the seed it came from into the estimate,

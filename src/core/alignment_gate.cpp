@@ -3,6 +3,8 @@
 #include <cmath>
 #include <sstream>
 
+#include "pda_registration/core/pose_covariance.hpp"
+
 namespace pda_registration {
 
 Verdict judgeAlignment(const RegistrationResult& result, const Eigen::Isometry3d& seed,
@@ -24,6 +26,16 @@ Verdict judgeAlignment(const RegistrationResult& result, const Eigen::Isometry3d
     reason << "correction of " << turned * 180.0 / M_PI
            << " deg from the seed exceeds max_correction_rotation "
            << thresholds.max_correction_rotation * 180.0 / M_PI;
+  } else if (const ExpectedError expected = expectedError(result.covariance);
+             thresholds.max_expected_translation > 0.0 &&
+             expected.translation > thresholds.max_expected_translation) {
+    reason << "expected error " << expected.translation << " m (1 sigma of its covariance) "
+           << "exceeds max_expected_error " << thresholds.max_expected_translation;
+  } else if (thresholds.max_expected_rotation > 0.0 &&
+             expected.rotation > thresholds.max_expected_rotation) {
+    reason << "expected error " << expected.rotation * 180.0 / M_PI
+           << " deg (1 sigma of its covariance) exceeds max_expected_error_deg "
+           << thresholds.max_expected_rotation * 180.0 / M_PI;
   } else {
     verdict.accepted = true;
     return verdict;

@@ -37,6 +37,8 @@ LiveParameters liveParametersFrom(const PdaRegistrationConfig& c) {
   live.acceptance.min_inlier_fraction = c.min_inlier_fraction;
   live.acceptance.max_correction_translation = c.max_correction_translation;
   live.acceptance.max_correction_rotation = c.max_correction_rotation_deg * M_PI / 180.0;
+  live.acceptance.max_expected_translation = c.max_expected_error;
+  live.acceptance.max_expected_rotation = c.max_expected_error_deg * M_PI / 180.0;
   // A large dense map is indexed around the sparse map's reach: as far as the gate lets a
   // correction go, so cropping never hides the answer the gate would accept.
   p.crop_above_points = c.crop_above_points;
