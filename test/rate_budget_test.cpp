@@ -1,10 +1,10 @@
 // The source budget that keeps up with the sparse clouds' rate (ros/rate_budget.hpp), driven by
 // a simulated alignment whose time grows linearly with its source points.
+#include "pda_registration/ros/rate_budget.hpp"
+
 #include <gtest/gtest.h>
 
 #include <cstddef>
-
-#include "pda_registration/ros/rate_budget.hpp"
 
 namespace pda_registration {
 namespace {

@@ -55,9 +55,9 @@ void MapAlignmentNodelet::onInit() {
   keeper_ = std::make_unique<DenseMapKeeper>(settings_.dense_is_target,
                                              settings_.expected_dense_frame, dense_topic, &status_,
                                              nodeletLog(), [this] { return liveParameters(); });
-  job_ = std::make_unique<AlignmentJob>(
-      AlignmentJobContext{&settings_, tf_buffer_.get(), publisher_.get(), edges_.get(), &status_,
-                          keeper_.get(), &idle_cores_, &rate_budget_, nodeletLog(), sparse_topic, dense_topic});
+  job_ = std::make_unique<AlignmentJob>(AlignmentJobContext{
+      &settings_, tf_buffer_.get(), publisher_.get(), edges_.get(), &status_, keeper_.get(),
+      &idle_cores_, &rate_budget_, nodeletLog(), sparse_topic, dense_topic});
   worker_ = std::thread(&MapAlignmentNodelet::workerLoop, this);
   dense_subscriber_ = node.subscribe("dense_cloud", 2, &MapAlignmentNodelet::denseCallback, this);
   sparse_subscriber_ =

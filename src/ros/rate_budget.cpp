@@ -17,20 +17,24 @@ void RateBudget::noteArrival(double seconds) {
   const bool first = last_arrival_ < 0.0;
   last_arrival_ = seconds;
   if (first || !(interval > 0.0) || interval > kLongestInterval) return;  // gap or clock jump
-  mean_interval_ = intervals_ == 0 ? interval
-                                   : (1.0 - kIntervalWeight) * mean_interval_ +
-                                         kIntervalWeight * interval;
+  mean_interval_ = intervals_ == 0
+                       ? interval
+                       : (1.0 - kIntervalWeight) * mean_interval_ + kIntervalWeight * interval;
   ++intervals_;
 }
 
 double RateBudget::period() const {
   std::lock_guard<std::mutex> lock(mutex_);
+  return periodLocked();
+}
+
+double RateBudget::periodLocked() const {
   return intervals_ >= kIntervalsNeeded ? mean_interval_ : 0.0;
 }
 
 void RateBudget::noteAlignment(double ms, size_t points, size_t cap, double share) {
-  const double period_s = period();
   std::lock_guard<std::mutex> lock(mutex_);
+  const double period_s = periodLocked();
   if (cap == 0 || !(share > 0.0) || !(period_s > 0.0) || !(ms > 0.0) || points == 0) {
     budget_ = 0.0;
     return;

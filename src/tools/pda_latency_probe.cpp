@@ -2,13 +2,14 @@
 // ~transform received, on a case folder (target.pcd, source.pcd, T_target_source.txt). Publishes
 // the dense map (latched) and a perturbed seed on tf once, then the sparse cloud --count times,
 // each after the previous result and no sooner than a sensor at --rate Hz (10) would send it
-// (the nodelet fits its source budget to that period, ros/rate_budget.hpp), and prints one JSON line with the median / p95 / max latency
-// and the error of the last estimate. With --tile N the dense map is N x N copies of the case's
-// target (the middle one in place; e.g. --tile 7 on room_scan: 5.5M points), and the JSON adds
-// what the nodelet's diagnostics say of it: points indexed, cropping, resident memory. Needs a
-// running roscore and the nodelet (scripts/measure_latency starts both). It cannot hang: the seed
-// goes out once the nodelet's tf listener has connected to /tf_static, a cloud that got no answer
-// within --resend-after seconds is sent again (counted as "resent"), and every wait ends at
+// (the nodelet fits its source budget to that period, ros/rate_budget.hpp), and prints one JSON
+// line with the median / p95 / max latency and the error of the last estimate. With --tile N the
+// dense map is N x N copies of the case's target (the middle one in place; e.g. --tile 7 on
+// room_scan: 5.5M points), and the JSON adds what the nodelet's diagnostics say of it: points
+// indexed, cropping, resident memory. Needs a running roscore and the nodelet
+// (scripts/measure_latency starts both). It cannot hang: the seed goes out once the nodelet's tf
+// listener has connected to /tf_static, a cloud that got no answer within --resend-after seconds is
+// sent again (counted as "resent"), and every wait ends at
 // --timeout with an error naming what it waited for.
 
 #include <diagnostic_msgs/DiagnosticArray.h>
@@ -55,8 +56,8 @@ int main(int argc, char** argv) {
   int count = 20, tile = 1;
   double timeout = 60.0, resend_after = 5.0, rate = 10.0;
   if (!cl.integer("count", &count, 1, 100000) || !cl.number("timeout", &timeout, 0.1, 3600) ||
-      !cl.number("resend-after", &resend_after, 0.01, 3600) || !cl.number("rate", &rate, 0.01, 1000) ||
-      !cl.integer("tile", &tile, 1, 101)) {
+      !cl.number("resend-after", &resend_after, 0.01, 3600) ||
+      !cl.number("rate", &rate, 0.01, 1000) || !cl.integer("tile", &tile, 1, 101)) {
     return fail(cl.error());
   }
   if (tile % 2 == 0) return fail("--tile must be odd (the middle copy holds the ground truth)");
@@ -142,10 +143,10 @@ int main(int argc, char** argv) {
   std::string failure;
   if (!waitFor([&] { return sparse.getNumSubscribers() > 0; },
                "a subscriber to " + sparse.getTopic() + " (is the nodelet running?)", &failure) ||
-      !waitFor([&] { return results.getNumPublishers() > 0; },
-               "a publisher of " + results.getTopic() + " (is the nodelet named '" + nodelet +
-                   "'?)",
-               &failure) ||
+      !waitFor(
+          [&] { return results.getNumPublishers() > 0; },
+          "a publisher of " + results.getTopic() + " (is the nodelet named '" + nodelet + "'?)",
+          &failure) ||
       !waitFor([&] { return tf_static.getNumSubscribers() > 0; },
                "the nodelet's tf listener to connect to /tf_static", &failure)) {
     return fail(failure);

@@ -17,8 +17,8 @@
 #include "pda_registration/ros/edge_broadcaster.hpp"
 #include "pda_registration/ros/idle_cores.hpp"
 #include "pda_registration/ros/live_parameters.hpp"
-#include "pda_registration/ros/rate_budget.hpp"
 #include "pda_registration/ros/node_settings.hpp"
+#include "pda_registration/ros/rate_budget.hpp"
 #include "pda_registration/ros/seed_lookup.hpp"
 
 namespace pda_registration {

@@ -32,10 +32,10 @@
 #include "pda_registration/ros/dense_map_keeper.hpp"
 #include "pda_registration/ros/edge_broadcaster.hpp"
 #include "pda_registration/ros/idle_cores.hpp"
-#include "pda_registration/ros/rate_budget.hpp"
 #include "pda_registration/ros/latest_input_queue.hpp"
 #include "pda_registration/ros/live_parameters.hpp"
 #include "pda_registration/ros/node_settings.hpp"
+#include "pda_registration/ros/rate_budget.hpp"
 
 namespace pda_registration {
 

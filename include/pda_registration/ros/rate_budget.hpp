@@ -35,6 +35,7 @@ class RateBudget {
 
  private:
   static size_t floorOf(size_t cap) { return cap / 4 > 0 ? cap / 4 : 1; }
+  double periodLocked() const;  // period() with mutex_ held
 
   mutable std::mutex mutex_;
   double last_arrival_ = -1.0;
