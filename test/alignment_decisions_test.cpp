@@ -114,10 +114,12 @@ TEST(WarmStart, ARejectedWarmAttemptIsRetriedFromTheSeed) {
   warm.remember(seed, estimate, "map", "velodyne");
 
   std::vector<Eigen::Isometry3d> starts;
+  std::vector<bool> warm_flags;
   const auto acceptOnly = [&](const Eigen::Isometry3d& accepted) {
-    return [&starts, accepted](const Eigen::Isometry3d& initial) {
+    return [&starts, &warm_flags, accepted](const Eigen::Isometry3d& initial, bool warm_attempt) {
       starts.push_back(initial);
-      return initial.isApprox(accepted);
+      warm_flags.push_back(warm_attempt);
+      return initial.isApprox(accepted) ? AttemptOutcome::kAccepted : AttemptOutcome::kRejected;
     };
   };
   EXPECT_FALSE(alignFromWarmStart(warm, true, seed, acceptOnly(estimate)));
@@ -125,15 +127,34 @@ TEST(WarmStart, ARejectedWarmAttemptIsRetriedFromTheSeed) {
   EXPECT_TRUE(starts[0].isApprox(estimate));
 
   starts.clear();
+  warm_flags.clear();
   EXPECT_TRUE(alignFromWarmStart(warm, true, seed, acceptOnly(seed)));
   ASSERT_EQ(starts.size(), 2u);
   EXPECT_TRUE(starts[0].isApprox(estimate));
   EXPECT_TRUE(starts[1].isApprox(seed));
+  EXPECT_EQ(warm_flags, (std::vector<bool>{true, false}));
 
   starts.clear();
+  warm_flags.clear();
   EXPECT_FALSE(alignFromWarmStart(warm, false, seed, acceptOnly(estimate)));
   ASSERT_EQ(starts.size(), 1u);
   EXPECT_TRUE(starts[0].isApprox(seed));
+  EXPECT_EQ(warm_flags, std::vector<bool>{false});
+}
+
+// A warm attempt cut by its time limit is not retried from the seed: the next scan is waiting.
+TEST(WarmStart, AWarmAttemptOutOfTimeIsNotRetried) {
+  const Eigen::Isometry3d seed = Eigen::Isometry3d::Identity();
+  Eigen::Isometry3d estimate = seed;
+  estimate.translation().y() -= 0.2;
+  WarmStart warm;
+  warm.remember(seed, estimate, "map", "velodyne");
+  int attempts = 0;
+  EXPECT_FALSE(alignFromWarmStart(warm, true, seed, [&](const Eigen::Isometry3d&, bool) {
+    ++attempts;
+    return AttemptOutcome::kOutOfTime;
+  }));
+  EXPECT_EQ(attempts, 1);
 }
 
 }  // namespace

@@ -170,6 +170,36 @@ TEST(SyntheticRegistration, MultipleRunsBeatASingleRun) {
   EXPECT_LT(multi_error, 0.015);  // measured 1.11 cm with the sampling-aware noise model
 }
 
+// time_limit_ms (the nodelet's deadline for warm alignments): no run starts after it, and a result
+// still moving then is "out of time", not converged; a limit it never reaches changes nothing.
+TEST(SyntheticRegistration, TimeLimitStopsAnAlignmentStillMoving) {
+  const SyntheticCase c = makeSyntheticRoom(SyntheticOptions());
+  const Eigen::Isometry3d initial = c.T_target_source * randomPerturbation(5.0, 0.25, 9);
+  RegistrationParameters unlimited;
+  unlimited.radius = 0.5;
+  RegistrationParameters generous = unlimited, tight = unlimited;
+  generous.time_limit_ms = 1e6;
+  tight.time_limit_ms = 1e-6;
+  const RegistrationResult free_run = alignCase(c, unlimited, initial);
+  const RegistrationResult in_time = alignCase(c, generous, initial);
+  const RegistrationResult cut = alignCase(c, tight, initial);
+  ASSERT_TRUE(free_run.converged) << free_run.reason;
+  EXPECT_GT(free_run.runs, 1);
+  EXPECT_TRUE(in_time.converged);
+  EXPECT_FALSE(in_time.out_of_time);
+  EXPECT_TRUE(in_time.T_target_source.isApprox(free_run.T_target_source, 0.0));
+  EXPECT_EQ(cut.runs, 1);  // the first run always runs
+  EXPECT_TRUE(cut.out_of_time);
+  EXPECT_FALSE(cut.converged);
+  EXPECT_NE(cut.reason.find("out of time"), std::string::npos) << cut.reason;
+
+  RegistrationParameters invalid = unlimited;
+  invalid.time_limit_ms = -1.0;
+  const RegistrationResult refused = alignCase(c, invalid, initial);
+  EXPECT_FALSE(refused.converged);
+  EXPECT_NE(refused.reason.find("time_limit_ms"), std::string::npos) << refused.reason;
+}
+
 // Re-using one registration object for several sources re-uses the target index.
 TEST(SyntheticRegistration, TargetIndexIsBuiltOnceAndReused) {
   const SyntheticCase c = makeSyntheticRoom(SyntheticOptions());

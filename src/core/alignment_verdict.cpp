@@ -16,6 +16,10 @@ void judgeConvergence(const RegistrationParameters& p, bool came_to_rest,
   if (!came_to_rest) {
     if (p.max_runs == 1) {
       reason << "EM did not settle in " << p.max_em_iterations << " iterations";
+    } else if (r.out_of_time) {
+      reason << "out of time: still moving after " << r.runs << " runs at the time limit of "
+             << p.time_limit_ms << " ms (the last run moved " << last_run_step.translation
+             << " and rotated " << last_run_step.rotation << " rad)";
     } else {
       reason << "not converged after " << r.runs << " runs (the work of " << p.max_runs
              << " over the whole source; the last moved " << last_run_step.translation

@@ -111,7 +111,7 @@ RegistrationResult PdaRegistration::align(const PointList& source,
     // other way round (alignment_direction.hpp). Kept only if that run converges. Only a whole
     // target is considered (one large enough to crop is a dense map already).
     const std::shared_ptr<const TargetIndex> target = target_map_.index();
-    if (!result.converged && target && !result.target_cropped &&
+    if (!result.converged && !result.out_of_time && target && !result.target_cropped &&
         result.source_points_used >= static_cast<size_t>(parameters_.min_correspondences) &&
         sourceIsDenser(countInOverlap(target->points(), source, T_target_source_initial))) {
       Associations swapped_associations;
@@ -141,6 +141,7 @@ RegistrationResult PdaRegistration::align(const PointList& source,
 RegistrationResult PdaRegistration::alignUnchecked(const PointList& source_input,
                                                    const Eigen::Isometry3d& T_target_source_initial,
                                                    Associations* associations) {
+  const auto started = std::chrono::steady_clock::now();
   const RegistrationParameters& p = parameters_;
   RegistrationResult result;
   result.T_target_source = T_target_source_initial;
@@ -237,7 +238,16 @@ RegistrationResult PdaRegistration::alignUnchecked(const PointList& source_input
   const PoseStep step_metric = PoseStep::over(source);
   RunExtrapolation extrapolation(step_metric);
   RunRest rest(step_metric);
+  const auto outOfTime = [&] {
+    return p.time_limit_ms > 0.0 &&
+           std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - started)
+                   .count() > p.time_limit_ms;
+  };
   for (int run = 1; work < p.max_runs; ++run) {
+    if (run > 1 && outOfTime()) {
+      result.out_of_time = true;
+      break;
+    }
     const PointList& active = stage == Stage::kApproach ? coarse_source : source;
     work += static_cast<double>(active.size()) / static_cast<double>(source.size());
     const double radius = stage == Stage::kRefine && p.max_runs > 1

@@ -29,6 +29,8 @@ std::string validateParameters(const RegistrationParameters& p) {
     error << "max_runs must be in [1, 1000] (got " << p.max_runs << ")";
   else if (p.coarse_stride < 1 || p.coarse_stride > 1000)
     error << "coarse_stride must be in [1, 1000] (got " << p.coarse_stride << ")";
+  else if (!(p.time_limit_ms >= 0.0) || !std::isfinite(p.time_limit_ms))
+    error << "time_limit_ms must be finite and >= 0 (got " << p.time_limit_ms << ")";
   else if (!finiteNonNegative(p.translation_epsilon) || !finiteNonNegative(p.rotation_epsilon))
     error << "translation_epsilon and rotation_epsilon must be >= 0 and finite";
   else if (p.solver_max_iterations < 1 || p.solver_max_iterations > 1000)

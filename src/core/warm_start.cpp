@@ -36,15 +36,15 @@ void WarmStart::forget() {
   sparse_frame_.clear();
 }
 
-bool alignFromWarmStart(const WarmStart& warm, bool use_warm,
-                        const Eigen::Isometry3d& T_dense_sparse_seed,
-                        const std::function<bool(const Eigen::Isometry3d&)>& attempt) {
+bool alignFromWarmStart(
+    const WarmStart& warm, bool use_warm, const Eigen::Isometry3d& T_dense_sparse_seed,
+    const std::function<AttemptOutcome(const Eigen::Isometry3d& initial, bool warm)>& attempt) {
   if (!use_warm) {
-    attempt(T_dense_sparse_seed);
+    attempt(T_dense_sparse_seed, false);
     return false;
   }
-  if (attempt(warm.corrected(T_dense_sparse_seed))) return false;
-  attempt(T_dense_sparse_seed);
+  if (attempt(warm.corrected(T_dense_sparse_seed), true) != AttemptOutcome::kRejected) return false;
+  attempt(T_dense_sparse_seed, false);
   return true;
 }
 

@@ -119,7 +119,13 @@ void AlignmentJob::run(const SparseJob& job, const LiveParameters& live) {
   const size_t budget_cap = static_cast<size_t>(std::max(live.registration.max_source_points, 0));
   parameters.max_source_points =
       static_cast<int>(c_.rate_budget->budget(budget_cap, live.alignment_share));
-  registration->setParameters(parameters);
+  // A warm alignment still moving after deadline_periods sparse-cloud periods is abandoned: the
+  // next scan is waiting, and an alignment that slow is sliding on a map that changed under it.
+  // One from the seed (the first, or a retry) is never cut: it is what starts the track.
+  const double period_s = c_.rate_budget->period();
+  const double warm_time_limit_ms =
+      live.deadline_periods > 0.0 && period_s > 0.0 ? 1000.0 * live.deadline_periods * period_s
+                                                    : 0.0;
 
   // Beyond max_source_points the core aligns an unbiased subsample (source_budget.hpp); a
   // swapped alignment still indexes the whole dense source as its target. Every result is judged
@@ -131,12 +137,15 @@ void AlignmentJob::run(const SparseJob& job, const LiveParameters& live) {
   std::string warm_start = warmStartUse(seed, dense_frame, sparse_frame, live);
   const bool retried = alignFromWarmStart(
       warm_start_, warm_start == kWarmStartUsed, seed.T_dense_sparse,
-      [&](const Eigen::Isometry3d& T_dense_sparse_initial) {
+      [&](const Eigen::Isometry3d& T_dense_sparse_initial, bool warm_attempt) {
+        parameters.time_limit_ms = warm_attempt ? warm_time_limit_ms : 0.0;
+        registration->setParameters(parameters);
         result = registration->align(*source_points, targetSource(T_dense_sparse_initial),
                                      want_markers ? &associations : nullptr);
         verdict = judgeAlignment(result, seed_target_source, live.acceptance);
         attempts_ms += result.time_ms;
-        return verdict.accepted;
+        if (verdict.accepted) return AttemptOutcome::kAccepted;
+        return result.out_of_time ? AttemptOutcome::kOutOfTime : AttemptOutcome::kRejected;
       });
   result.time_ms = attempts_ms;  // both attempts, when the warm one was retried
   c_.rate_budget->noteAlignment(result.time_ms, result.source_points_used, budget_cap,
@@ -163,6 +172,7 @@ void AlignmentJob::run(const SparseJob& job, const LiveParameters& live) {
     s.threads_used = parameters.threads;
     s.warm_start = warm_start;
     if (retried) ++s.warm_start_retries;
+    if (result.out_of_time) ++s.out_of_time;
     if (verdict.accepted)
       ++s.accepted;
     else

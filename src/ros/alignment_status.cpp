@@ -59,6 +59,7 @@ void AlignmentStatus::fill(diagnostic_updater::DiagnosticStatusWrapper& status,
   status.add("seed source", toString(s.last_seed));
   status.add("warm start", s.warm_start);
   status.add("warm starts retried from the seed", s.warm_start_retries);
+  status.add("warm alignments out of time", s.out_of_time);
   status.add("dense clouds received", s.dense_received);
   status.add("dense clouds unchanged (not re-indexed)", s.dense_unchanged);
   status.add("dense map points", s.dense_points);

@@ -49,6 +49,7 @@ LiveParameters liveParametersFrom(const PdaRegistrationConfig& c) {
   live.dense_subset = c.dense_subset;
   live.warm_start = c.warm_start;
   live.alignment_share = c.alignment_share;
+  live.deadline_periods = c.deadline_periods;
   return live;
 }
 

@@ -33,12 +33,20 @@ class WarmStart {
   std::string dense_frame_, sparse_frame_;
 };
 
+/// How one attempt of alignFromWarmStart ended.
+enum class AttemptOutcome {
+  kAccepted,
+  kRejected,
+  kOutOfTime,  ///< stopped by its time limit: the time for a retry is spent as well
+};
+
 /// One alignment of a running system: `attempt` (align from an initial dense <- sparse transform;
-/// true when the result is accepted) from `warm`'s corrected seed when `use_warm` is set, and
-/// from the seed itself when it is not, or when the warm attempt was rejected (the correction may
-/// be stale: the seed's publisher jumped, relocalised). Returns true when it retried.
-bool alignFromWarmStart(const WarmStart& warm, bool use_warm,
-                        const Eigen::Isometry3d& T_dense_sparse_seed,
-                        const std::function<bool(const Eigen::Isometry3d&)>& attempt);
+/// `warm` says whether that is the corrected seed) from `warm`'s corrected seed when `use_warm` is
+/// set, and from the seed itself when it is not, or when the warm attempt was rejected (the
+/// correction may be stale: the seed's publisher jumped, relocalised). A warm attempt that ran out
+/// of time is not retried. Returns true when it retried.
+bool alignFromWarmStart(
+    const WarmStart& warm, bool use_warm, const Eigen::Isometry3d& T_dense_sparse_seed,
+    const std::function<AttemptOutcome(const Eigen::Isometry3d& initial, bool warm)>& attempt);
 
 }  // namespace pda_registration

@@ -57,6 +57,7 @@ struct AlignmentStatusValues {
   // (core/warm_start.hpp), or why not; and how often such a start was rejected and retried.
   std::string warm_start = "no alignment yet";
   size_t warm_start_retries = 0;
+  size_t out_of_time = 0;  ///< warm alignments abandoned at their deadline (deadline_periods)
 };
 
 class AlignmentStatus {

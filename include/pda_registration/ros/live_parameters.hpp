@@ -23,6 +23,9 @@ struct LiveParameters {
   /// The part of the sparse clouds' period an alignment may take (ros/rate_budget.hpp); 0: the
   /// budget is max_source_points.
   double alignment_share = 0.5;
+  /// A warm alignment still moving after this many periods of the sparse clouds is abandoned
+  /// (not published); 0: no limit. Alignments from the seed are never cut.
+  double deadline_periods = 1.0;
 };
 
 LiveParameters liveParametersFrom(const PdaRegistrationConfig& config);
