@@ -2,6 +2,7 @@
 // alignment starts from the seed; switched on, the next starts from the seed corrected by the
 // last accepted correction, needs fewer runs and lands as close; off again, the node repeats its
 // answer from the seed exactly (same map index, cloud and seed: the alignment is deterministic).
+// And the deadline for warm alignments (deadline_periods).
 #include <gtest/gtest.h>
 
 #include <cstdio>
@@ -82,6 +83,65 @@ TEST(NodeletWarmStart, StartsFromTheLastCorrectionUnlessSwitchedOff) {
   EXPECT_EQ(harness.diagnosticValue("warm starts retried from the seed"), "0");
   EXPECT_TRUE(harness.warnings().empty()) << harness.warnings().front();
   std::printf("runs: first %d, from the seed %d, warm %d\n", first.runs, cold.runs, warm.runs);
+}
+
+// The deadline (deadline_periods): a warm alignment still moving after that many periods of the
+// sparse clouds is abandoned, nothing published for its cloud, counted in the diagnostics; 0 lifts
+// the limit. (The launch's nodelet may hold the test above's warm start and counts: only
+// differences are compared.)
+TEST(NodeletWarmStart, AWarmAlignmentPastItsDeadlineIsAbandoned) {
+  NodeletHarness harness("pda_registration");
+  testing_support::SharedCase data;
+  ASSERT_TRUE(loadCaseAndConnect(&harness, "room_scan", &data));
+  const Eigen::Isometry3d seed = data.T_target_source * randomPerturbation(5.0, 0.25, 4);
+  ASSERT_TRUE(harness.publishSeed(seed, "dense_map", "sparse_map"));
+  harness.publishDense(data.target, "dense_map");
+  ros::WallDuration(0.5).sleep();
+  // 1 % of a 10 Hz period: 1 ms, less than any alignment's first run.
+  ASSERT_TRUE(harness.reconfigure(
+      testing_support::ParameterChange().set("warm_start", true).set("deadline_periods", 0.01)));
+  const auto outOfTime = [&] {
+    const std::string value = harness.diagnosticValue("warm alignments out of time");
+    return value.empty() ? 0 : std::stoi(value);
+  };
+  ASSERT_TRUE(harness.waitForFreshDiagnostics(5.0));
+  const int out_of_time_before = outOfTime();
+
+  // Clouds at 10 Hz: the first may run from the seed (never cut); once the period is measured,
+  // every warm alignment has 1 ms.
+  constexpr int kClouds = 12;
+  const size_t answered_before = harness.transformCount();
+  for (int i = 0; i < kClouds; ++i) {
+    harness.publishSparse(data.source, "sparse_map");
+    ros::WallDuration(0.1).sleep();
+  }
+  // (Not harness.waitFor: its condition runs under the lock that diagnosticValue takes.)
+  const ros::WallTime until = ros::WallTime::now() + ros::WallDuration(30.0);
+  while (outOfTime() - out_of_time_before < 3 && ros::WallTime::now() < until) {
+    harness.waitForFreshDiagnostics(2.0);
+  }
+  ASSERT_GE(outOfTime() - out_of_time_before, 3) << "warm alignments out of time";
+  ros::WallDuration(1.0).sleep();  // the last cloud's alignment, whatever it does
+  ASSERT_TRUE(harness.waitForFreshDiagnostics(5.0));
+  const int abandoned = outOfTime() - out_of_time_before;
+  const size_t answered = harness.transformCount() - answered_before;
+  EXPECT_LE(answered + static_cast<size_t>(abandoned), static_cast<size_t>(kClouds));
+  EXPECT_LT(answered, static_cast<size_t>(kClouds - 2));
+  EXPECT_NE(harness.logText().find("out of time"), std::string::npos);
+
+  // No limit: the next warm alignment answers, close to the truth.
+  ASSERT_TRUE(harness.reconfigure(testing_support::ParameterChange().set("deadline_periods", 0.0)));
+  const size_t before_last = harness.transformCount();
+  harness.publishSparse(data.source, "sparse_map");
+  ASSERT_TRUE(harness.waitForTransformsBeyond(before_last, 60.0));
+  ASSERT_TRUE(harness.waitForFreshDiagnostics(5.0));
+  EXPECT_EQ(harness.diagnosticValue("warm start"), "used");
+  EXPECT_EQ(outOfTime() - out_of_time_before, abandoned);
+  const PoseError e =
+      poseError(data.source, toEigen(harness.lastTransform().transform), data.T_target_source);
+  EXPECT_LT(e.translation, 0.03);
+  EXPECT_LT(e.rotation_deg, 0.75);
+  std::printf("deadline: %zu of %d clouds answered, %d abandoned\n", answered, kClouds, abandoned);
 }
 
 }  // namespace
