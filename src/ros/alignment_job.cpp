@@ -123,9 +123,9 @@ void AlignmentJob::run(const SparseJob& job, const LiveParameters& live) {
   // next scan is waiting, and an alignment that slow is sliding on a map that changed under it.
   // One from the seed (the first, or a retry) is never cut: it is what starts the track.
   const double period_s = c_.rate_budget->period();
-  const double warm_time_limit_ms =
-      live.deadline_periods > 0.0 && period_s > 0.0 ? 1000.0 * live.deadline_periods * period_s
-                                                    : 0.0;
+  const double warm_time_limit_ms = live.deadline_periods > 0.0 && period_s > 0.0
+                                        ? 1000.0 * live.deadline_periods * period_s
+                                        : 0.0;
 
   // Beyond max_source_points the core aligns an unbiased subsample (source_budget.hpp); a
   // swapped alignment still indexes the whole dense source as its target. Every result is judged

@@ -39,14 +39,24 @@ struct Answer {
   return ::testing::AssertionSuccess();
 }
 
+// room_scan's map and a seed publisher with a constant 5 deg / 0.25 m error, the latched map and
+// the static seed given time to arrive first.
+::testing::AssertionResult serveRoomScan(NodeletHarness* harness,
+                                         testing_support::SharedCase* data) {
+  const ::testing::AssertionResult loaded = loadCaseAndConnect(harness, "room_scan", data);
+  if (!loaded) return loaded;
+  const Eigen::Isometry3d seed = data->T_target_source * randomPerturbation(5.0, 0.25, 4);
+  if (!harness->publishSeed(seed, "dense_map", "sparse_map"))
+    return ::testing::AssertionFailure() << "the seed did not reach tf";
+  harness->publishDense(data->target, "dense_map");
+  ros::WallDuration(0.5).sleep();
+  return ::testing::AssertionSuccess();
+}
+
 TEST(NodeletWarmStart, StartsFromTheLastCorrectionUnlessSwitchedOff) {
   NodeletHarness harness("pda_registration");
   testing_support::SharedCase data;
-  ASSERT_TRUE(loadCaseAndConnect(&harness, "room_scan", &data));
-  const Eigen::Isometry3d seed = data.T_target_source * randomPerturbation(5.0, 0.25, 4);
-  ASSERT_TRUE(harness.publishSeed(seed, "dense_map", "sparse_map"));
-  harness.publishDense(data.target, "dense_map");
-  ros::WallDuration(0.5).sleep();  // the latched map and the static seed first
+  ASSERT_TRUE(serveRoomScan(&harness, &data));
 
   Answer first, cold, warm, cold_again;
   ASSERT_TRUE(alignOnce(&harness, data.source, &first));
@@ -92,11 +102,7 @@ TEST(NodeletWarmStart, StartsFromTheLastCorrectionUnlessSwitchedOff) {
 TEST(NodeletWarmStart, AWarmAlignmentPastItsDeadlineIsAbandoned) {
   NodeletHarness harness("pda_registration");
   testing_support::SharedCase data;
-  ASSERT_TRUE(loadCaseAndConnect(&harness, "room_scan", &data));
-  const Eigen::Isometry3d seed = data.T_target_source * randomPerturbation(5.0, 0.25, 4);
-  ASSERT_TRUE(harness.publishSeed(seed, "dense_map", "sparse_map"));
-  harness.publishDense(data.target, "dense_map");
-  ros::WallDuration(0.5).sleep();
+  ASSERT_TRUE(serveRoomScan(&harness, &data));
   // 1 % of a 10 Hz period: 1 ms, less than any alignment's first run.
   ASSERT_TRUE(harness.reconfigure(
       testing_support::ParameterChange().set("warm_start", true).set("deadline_periods", 0.01)));
