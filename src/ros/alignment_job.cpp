@@ -18,6 +18,11 @@ constexpr double kFirstMapTimeout = 30.0;
 // How often the sparse clouds' spacing is measured again (a kd-tree over one cloud: ~3 ms for
 // 30k points); the keeper re-indexes only when it changes by more than a factor of sqrt(2).
 constexpr double kSpacingPeriod = 10.0;
+// Warm alignments cut by the deadline in a row before one runs its course: at worst every sixth
+// scan is answered on a machine that cannot align one within the deadline even at the budget's
+// floor (rather than none), while a map's first coverage (its slides come 20-35 in a row on the
+// growing office) still loses most of its slow, wrong answers.
+constexpr int kMaxAbandonedInARow = 5;
 }  // namespace
 
 void AlignmentJob::reportSpacing(const PointList& sparse) {
@@ -121,11 +126,12 @@ void AlignmentJob::run(const SparseJob& job, const LiveParameters& live) {
       static_cast<int>(c_.rate_budget->budget(budget_cap, live.alignment_share));
   // A warm alignment still moving after deadline_periods sparse-cloud periods is abandoned: the
   // next scan is waiting, and an alignment that slow is sliding on a map that changed under it.
-  // One from the seed (the first, or a retry) is never cut: it is what starts the track.
+  // One from the seed (the first, or a retry) is never cut: it is what starts the track. Nor is
+  // the one after kMaxAbandonedInARow cut ones: a machine too slow for the sensor still answers.
   const double period_s = c_.rate_budget->period();
-  const double warm_time_limit_ms = live.deadline_periods > 0.0 && period_s > 0.0
-                                        ? 1000.0 * live.deadline_periods * period_s
-                                        : 0.0;
+  const bool deadline = live.deadline_periods > 0.0 && period_s > 0.0 &&
+                        abandoned_in_a_row_ < kMaxAbandonedInARow;
+  const double warm_time_limit_ms = deadline ? 1000.0 * live.deadline_periods * period_s : 0.0;
 
   // Beyond max_source_points the core aligns an unbiased subsample (source_budget.hpp); a
   // swapped alignment still indexes the whole dense source as its target. Every result is judged
@@ -148,6 +154,7 @@ void AlignmentJob::run(const SparseJob& job, const LiveParameters& live) {
         return result.out_of_time ? AttemptOutcome::kOutOfTime : AttemptOutcome::kRejected;
       });
   result.time_ms = attempts_ms;  // both attempts, when the warm one was retried
+  abandoned_in_a_row_ = result.out_of_time ? abandoned_in_a_row_ + 1 : 0;
   c_.rate_budget->noteAlignment(result.time_ms, result.source_points_used, budget_cap,
                                 live.alignment_share);
   if (retried) warm_start = "used, rejected; retried from the seed";

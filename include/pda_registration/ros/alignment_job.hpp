@@ -76,6 +76,7 @@ class AlignmentJob {
   AlignmentJobContext c_;
   PdaRegistration sparse_target_;  // the registration when the sparse cloud is the target
   WarmStart warm_start_;           // the worker thread's alone
+  int abandoned_in_a_row_ = 0;     // warm alignments cut by the deadline since one ran its course
   ros::WallTime last_spacing_;
 };
 
