@@ -18,10 +18,10 @@ struct RegistrationResult {
   double covariance_ms = 0.0;    ///< time spent on it (part of time_ms)
 
   bool converged = false;
-  std::string reason;  ///< why not converged (empty when converged)
+  std::string reason;        ///< why not converged (empty when converged)
+  bool out_of_time = false;  ///< stopped by time_limit_ms before it came to rest
 
   int runs = 0;           ///< candidate-set computations (outer loop)
-  bool out_of_time = false;  ///< stopped by time_limit_ms before it came to rest
   int em_iterations = 0;  ///< E/M iterations summed over runs
   double sigma = 0.0;     ///< final residual scale [length]
   double nu = 0.0;        ///< Student-t degrees of freedom at the end (estimated or the parameter)

@@ -24,7 +24,8 @@ struct LiveParameters {
   /// budget is max_source_points.
   double alignment_share = 0.5;
   /// A warm alignment still moving after this many periods of the sparse clouds is abandoned
-  /// (not published); 0: no limit. Alignments from the seed are never cut.
+  /// (not published); 0: no limit. Alignments from the seed are never cut, nor the one after five
+  /// cut in a row.
   double deadline_periods = 1.0;
 };
 
