@@ -167,8 +167,8 @@ TEST(TargetIndex, ExtendedEqualsRebuiltOnARealGrowingMap) {
                          findCandidateSets(rebuilt, factory.source, T, 5, radius, 1));
   }
   EXPECT_EQ(normals.voxelsWithNormal(), rebuilt_normals.voxelsWithNormal());
-  // The lookup is updated in place, voxel by voxel (normals set, replaced and removed as points
-  // arrive): it answers as the rebuilt one, on the map and off it.
+  // Normals set, replaced and removed as points arrive: the extended map answers as the rebuilt
+  // one, on the map and off it.
   for (size_t i = 0; i < map.size(); i += 7) {
     ASSERT_EQ(normals.normalAt(map[i]), rebuilt_normals.normalAt(map[i])) << i;
   }
