@@ -63,7 +63,7 @@ void fillFinalStatistics(const PointList& source, const SurfaceNormalMap& normal
   PoseCovarianceTerms terms;
   computePoseCovariance(correspondences, state.T, state.sigma_squared, state.nu, &result->covariance,
                         &terms);
-  result->covariance_blocks = terms.blocks;
+  result->covariance_correlation_length = terms.cell_edge;
   result->covariance_ms =
       std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - covariance_start)
           .count();

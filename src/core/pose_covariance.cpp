@@ -15,42 +15,54 @@
 namespace pda_registration {
 namespace {
 
-// A score block needs several times more blocks than the 6 pose parameters for the spread of
-// block scores to estimate a 6x6 matrix (21 entries) at all; 40 keeps the small-sample
-// correction B / (B - 6) below 1.18.
-constexpr size_t kMinBlocks = 40;
-// The finest grid: the overlap's diagonal / 64. Coarser grids double the cell edge.
-constexpr int kFinestDivisions = 64;
+// The finest grid of the score correlogram: the overlap's diagonal / 128 (a few centimetres on a
+// room, decimetres on a car park; diagonal / 256 gave the same covariances at twice the cost).
+// Each coarser level doubles the cell edge, up to kCoarsestEdge x the overlap's radius, where
+// the cells' neighbourhoods span the whole overlap.
+constexpr int kFinestDivisions = 128;
+constexpr double kCoarsestEdge = 0.5;
 
-// Scores summed per block. Cells keep their coordinates beside the key for coarsening (the
-// grid spans at most a few hundred cells per axis, so keys never wrap onto each other).
-struct BlockScore {
+// Scores summed per grid cell. Cells keep their coordinates beside the key for coarsening and
+// for finding their neighbours (the grid spans at most kFinestDivisions cells per axis, so keys
+// never wrap onto each other).
+struct CellScore {
   VoxelCell cell;
   Vector6d score = Vector6d::Zero();
 };
-using BlockScores = std::unordered_map<uint64_t, BlockScore>;
+using CellScores = std::unordered_map<uint64_t, CellScore>;
 
-void addScore(const VoxelCell& cell, const Vector6d& score, BlockScores* blocks) {
-  BlockScore& block = (*blocks)[voxelCellKey(cell)];
-  block.cell = cell;
-  block.score += score;
+void addScore(const VoxelCell& cell, const Vector6d& score, CellScores* cells) {
+  CellScore& entry = (*cells)[voxelCellKey(cell)];
+  entry.cell = cell;
+  entry.score += score;
 }
 
 // The same scores summed over cells twice as large along each axis.
-BlockScores coarsen(const BlockScores& fine) {
-  BlockScores coarse;
+CellScores coarsen(const CellScores& fine) {
+  CellScores coarse;
   for (const auto& entry : fine) addScore(parentCell(entry.second.cell), entry.second.score, &coarse);
   return coarse;
 }
 
-// sum_b g_b g_b^T with the small-sample correction B / (B - 6).
-Matrix6d scoreSpread(const BlockScores& blocks) {
-  Matrix6d spread = Matrix6d::Zero();
-  for (const auto& entry : blocks) {
-    spread.noalias() += entry.second.score * entry.second.score.transpose();
+// sum g_i g_j^T over the pairs of points whose cells touch (the 27 cells around a cell, itself
+// included): a spatial HAC's middle term with a box kernel about 1.5 cells wide. Summed per cell,
+// so it costs one pass over the cells and 27 lookups each, not a pass over the pairs of points.
+Matrix6d neighbourScoreSum(const CellScores& cells) {
+  Matrix6d sum = Matrix6d::Zero();
+  for (const auto& entry : cells) {
+    const VoxelCell& c = entry.second.cell;
+    Vector6d nearby = Vector6d::Zero();
+    for (int64_t dx = -1; dx <= 1; ++dx) {
+      for (int64_t dy = -1; dy <= 1; ++dy) {
+        for (int64_t dz = -1; dz <= 1; ++dz) {
+          const auto found = cells.find(voxelCellKey({c.x + dx, c.y + dy, c.z + dz}));
+          if (found != cells.end()) nearby += found->second.score;
+        }
+      }
+    }
+    sum.noalias() += entry.second.score * nearby.transpose();
   }
-  const double count = static_cast<double>(blocks.size());
-  return count / (count - 6.0) * spread;
+  return 0.5 * (sum + sum.transpose());
 }
 
 bool invertPositiveDefinite(const Matrix6d& matrix, Matrix6d* inverse) {
@@ -77,8 +89,9 @@ int octantOf(const Point& p, const Eigen::Vector3d& centre) {
 // Map-scale structure: a delete-one-octant jackknife. Each octant of the overlap that holds at
 // least 2 % of the points is left out in turn and the linearised problem re-solved without it
 // (H - H_o) d_o = -g_o; the spread of the d_o is how much the parts of the map disagree (a warp
-// over the whole map, a dense map that covers only part of the scan), a scale no grid of
-// kMinBlocks blocks resolves. False with fewer than two such octants.
+// over the whole map, a dense map that covers only part of the scan). The correlogram sees the
+// scores of one neighbourhood at a time, and at the optimum the parts' pulls cancel in total;
+// this sees the parts against each other. False with fewer than two such octants.
 bool octantJackknife(const std::array<OctantSums, 8>& octants, const Matrix6d& hessian,
                      size_t total_points, Matrix6d* spread) {
   std::vector<Vector6d> steps;
@@ -123,7 +136,7 @@ bool computePoseCovariance(const WeightedCorrespondences& correspondences,
   covariance->setZero();
   if (terms) *terms = PoseCovarianceTerms();
   if (correspondences.size() < 3 || !(sigma_squared > 0.0)) return false;
-  // The moved points and the overlap's box, on which the block grid and the octants hang.
+  // The moved points and the overlap's box, on which the cell grid and the octants hang.
   PointList moved(correspondences.size());
   Eigen::AlignedBox3d overlap;
   for (size_t i = 0; i < correspondences.size(); ++i) {
@@ -134,9 +147,9 @@ bool computePoseCovariance(const WeightedCorrespondences& correspondences,
   const Eigen::Vector3d centre = overlap.center();
 
   // The Hessian of the EM objective and every point's score (the gradient of its term) at the
-  // optimum, summed per finest block and per octant.
+  // optimum, summed per finest cell and per octant.
   Matrix6d hessian = Matrix6d::Zero(), robust_hessian = Matrix6d::Zero();
-  BlockScores blocks;
+  CellScores cells;
   std::array<OctantSums, 8> octants;
   for (size_t i = 0; i < correspondences.size(); ++i) {
     const PoseJacobian jacobian =
@@ -159,7 +172,7 @@ bool computePoseCovariance(const WeightedCorrespondences& correspondences,
       robust_hessian.noalias() -=
           2.0 * weight * t_weight / ((nu + 3.0) * sigma_squared) * pull * pull.transpose();
     }
-    if (finest_edge > 0.0) addScore(voxelCellOf(moved[i], 1.0 / finest_edge), score, &blocks);
+    if (finest_edge > 0.0) addScore(voxelCellOf(moved[i], 1.0 / finest_edge), score, &cells);
     OctantSums& octant = octants[octantOf(moved[i], centre)];
     octant.hessian.noalias() += point_hessian;
     octant.score += score;
@@ -173,34 +186,39 @@ bool computePoseCovariance(const WeightedCorrespondences& correspondences,
   Matrix6d bread;
   if (!invertPositiveDefinite(robust_hessian, &bread)) bread = hessian_inverse;
 
-  // Structure term: the spread of the scores summed over spatial blocks (a cluster sandwich,
-  // H^-1 (sum_b g_b g_b^T) H^-1). Neighbouring residuals share the model's errors (a surface
-  // sampled a little off, a warped wall, the target's own noise under several source points), so
-  // a block, not a point, is one independent constraint. Blocks as large as the data allows
-  // (at least kMinBlocks of them) catch the longest such correlation.
+  // Structure term: a spatial HAC sandwich, H^-1 S(L) H^-1 with S(L) = sum g_i g_j^T over the
+  // pairs of points closer than about L. Neighbouring residuals share the model's errors (a
+  // surface sampled a little off, a warped wall, the target's own noise under several source
+  // points), so they are not independent constraints. How far that correlation reaches is read
+  // from the data: S(L) grows with L as long as the scores of points L apart pull the same way,
+  // and falls back towards zero beyond (at the optimum the scores sum to zero). The term is the
+  // upper bound of S(L) over a doubling ladder of L, from the finest grid to the overlap's size.
+  const double radius = 0.5 * overlap.diagonal().norm();
   Matrix6d structure = Matrix6d::Zero();
-  size_t block_count = 0;
-  double block_edge = 0.0;
-  for (double edge = finest_edge; blocks.size() >= kMinBlocks; edge *= 2.0) {
-    structure = bread * scoreSpread(blocks) * bread;
-    block_count = blocks.size();
-    block_edge = edge;
-    blocks = coarsen(blocks);
+  size_t cell_count = 0;
+  double cell_edge = 0.0, largest = 0.0;
+  for (double edge = finest_edge; edge > 0.0 && edge <= kCoarsestEdge * radius; edge *= 2.0) {
+    const Matrix6d level = bread * neighbourScoreSum(cells) * bread;
+    structure = upperBound(structure, level, radius);
+    // For inspection: the level that reaches furthest (metres and radians weighed as above).
+    const double size = level.topLeftCorner<3, 3>().trace() +
+                        radius * radius * level.bottomRightCorner<3, 3>().trace();
+    if (size > largest) largest = size, cell_count = cells.size(), cell_edge = edge;
+    cells = coarsen(cells);
   }
   Matrix6d map_scale;
-  const double radius = 0.5 * overlap.diagonal().norm();
   if (radius > 0.0 && octantJackknife(octants, hessian, moved.size(), &map_scale)) {
     structure = upperBound(structure, map_scale, radius);
   }
-  // The two terms overlap (the blocks' spread also holds the white noise the model term counts),
-  // so their sum errs on the safe side: about 1.6x when the residuals are independent.
+  // The two terms overlap (the structure term also holds the white noise the model term counts),
+  // so their sum errs on the safe side when the residuals are independent.
   *covariance = model + structure;
   *covariance = 0.5 * (*covariance + covariance->transpose()).eval();  // exact symmetry
   if (terms) {
     terms->model = model;
     terms->structure = structure;
-    terms->blocks = block_count;
-    terms->block_edge = block_edge;
+    terms->cells = cell_count;
+    terms->cell_edge = cell_edge;
   }
   return covariance->allFinite();
 }

@@ -6,14 +6,17 @@
 //  - model: the inverse Hessian of the EM objective, sigma^2 (sum_j W_j J_j^T M_j^-1 J_j)^-1 with
 //    M_j the point's noise shape. It is right only if every residual were independent noise;
 //    alone it was 3-80x smaller than the error actually made.
-//  - structure: a spatial-block sandwich H^-1 (sum_b g_b g_b^T) H^-1 over the gradients g_b of
-//    the objective summed over blocks of the overlap. At the optimum the g_b cancel in total;
-//    how far they disagree is how much the pose rests on regions that want different poses
-//    (correlated residuals: sampling, surface fit, non-rigid distortion). H here is the Student-t
-//    objective's exact Hessian (with the t-weights' derivative), as in an M-estimator's sandwich.
-//    The grid is as coarse as leaves kMinBlocks blocks; what the map's parts disagree on at a
-//    larger scale (a warp over the whole map, a map that covers part of the scan) comes from a
-//    delete-one-octant jackknife, and the structure term is the upper bound of the two.
+//  - structure: a spatial HAC sandwich H^-1 S(L) H^-1 (heteroskedasticity and autocorrelation
+//    consistent, as in spatial econometrics), S(L) = sum g_i g_j^T over the pairs of points
+//    closer than about L, g_i the gradient of point i's term of the objective. Neighbouring
+//    residuals share the model's errors (sampling, surface fit, non-rigid distortion), so they
+//    are not independent constraints; S(L) grows with L as far as the scores stay correlated.
+//    L is not a constant: the term is the upper bound of S(L) over a doubling ladder of L, from
+//    the overlap's diagonal / 128 to its size, summed per grid cell (27 neighbouring cells).
+//    H here is the Student-t objective's exact Hessian (with the t-weights' derivative), as in
+//    an M-estimator's sandwich. What the map's parts disagree on as wholes (a warp over the
+//    whole map, a map that covers part of the scan) comes from a delete-one-octant jackknife,
+//    and the structure term is the upper bound of the two.
 // See docs/benchmark.md (Covariance) for what it is calibrated against (pda_covariance_check).
 
 #include <Eigen/Geometry>
@@ -22,12 +25,12 @@
 
 namespace pda_registration {
 
-/// The two terms and the blocks used, for inspection and tests.
+/// The two terms and the correlogram's widest level, for inspection and tests.
 struct PoseCovarianceTerms {
   Eigen::Matrix<double, 6, 6> model = Eigen::Matrix<double, 6, 6>::Zero();
   Eigen::Matrix<double, 6, 6> structure = Eigen::Matrix<double, 6, 6>::Zero();
-  size_t blocks = 0;        ///< occupied blocks of the structure term (0: too few, term is zero)
-  double block_edge = 0.0;  ///< [length] their edge
+  size_t cells = 0;        ///< occupied cells of the ladder's largest level (0: no structure term)
+  double cell_edge = 0.0;  ///< [length] their edge: about how far the residuals are correlated
 };
 
 /// `nu` is the E-step's (+inf: Gaussian). Returns false (and a zero matrix) when the Hessian is

@@ -11,11 +11,13 @@ struct RegistrationResult {
   /// p_target = T_target_source * p_source. Equal to the initial guess when nothing could be done.
   Eigen::Isometry3d T_target_source = Eigen::Isometry3d::Identity();
   /// Covariance of the estimate, ROS order (x, y, z, roll, pitch, yaw): a left perturbation
-  /// exp(delta) * T expressed in the target frame (pose_covariance.hpp: noise plus the spread of
-  /// the residuals' spatial blocks). Zero when it could not be computed.
+  /// exp(delta) * T expressed in the target frame (pose_covariance.hpp: noise plus the residuals'
+  /// spatial correlation). Zero when it could not be computed.
   Eigen::Matrix<double, 6, 6> covariance = Eigen::Matrix<double, 6, 6>::Zero();
-  size_t covariance_blocks = 0;  ///< spatial blocks of its structure term (0: noise term only)
-  double covariance_ms = 0.0;    ///< time spent on it (part of time_ms)
+  /// [length] how far the residuals were found correlated: the cell edge of the structure term's
+  /// largest level (0: noise term only)
+  double covariance_correlation_length = 0.0;
+  double covariance_ms = 0.0;  ///< time spent on it (part of time_ms)
 
   bool converged = false;
   std::string reason;        ///< why not converged (empty when converged)
