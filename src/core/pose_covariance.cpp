@@ -17,8 +17,8 @@ namespace {
 
 // The finest grid of the score correlogram: the overlap's diagonal / 128 (a few centimetres on a
 // room, decimetres on a car park; diagonal / 256 gave the same covariances at twice the cost).
-// Each coarser level doubles the cell edge, up to kCoarsestEdge x the overlap's radius, where
-// the cells' neighbourhoods span the whole overlap.
+// Each coarser level doubles the cell edge, up to kCoarsestEdge x the overlap's radius, where a
+// cell's neighbourhood (3 cells wide) spans most of the overlap.
 constexpr int kFinestDivisions = 128;
 constexpr double kCoarsestEdge = 0.5;
 
