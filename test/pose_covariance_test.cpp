@@ -196,7 +196,7 @@ TEST(PoseCovariance, SimulatedOfficeErrorIsWithinHalfToTwiceTheReportedSigma) {
 // A car park (64-beam lidar map, VLP-16 scan): a 360-degree scan's residuals are correlated along
 // each ring over tens of metres and cancel between its sides. The 40-block sandwich counted
 // blocks of ~20 m as independent and was too cautious here (medians 0.58 / 0.18 over these
-// three draws: the rotation fails); the correlogram sees the cancelling (1.53 / 0.74). One noise
+// three draws: the rotation fails); the correlogram sees the cancelling (1.46 / 0.95). One noise
 // draw is one error, so three are pooled (median), as pda_covariance_check --pool-draws does.
 TEST(PoseCovariance, SimulatedCarParkErrorIsWithinHalfToTwiceTheReportedSigma) {
   std::vector<double> t_ratios, r_ratios;
