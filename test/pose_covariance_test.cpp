@@ -165,8 +165,8 @@ CovarianceCheck alignAndCompare(const simulation::MapSimulationOptions& options)
   CovarianceCheck check;
   EXPECT_TRUE(registration.setTarget(maps.dense));
   Eigen::Isometry3d seed = maps.T_target_source;
-  seed.linear() = Eigen::AngleAxisd(5.0 * M_PI / 180.0, Eigen::Vector3d(1, 2, 3).normalized()) *
-                  seed.linear();
+  seed.linear() =
+      Eigen::AngleAxisd(5.0 * M_PI / 180.0, Eigen::Vector3d(1, 2, 3).normalized()) * seed.linear();
   seed.translation() += Eigen::Vector3d(0.15, -0.15, 0.1);
   check.result = registration.align(maps.sparse, seed);
   EXPECT_TRUE(check.result.converged) << check.result.reason;
@@ -213,9 +213,10 @@ TEST(PoseCovariance, SimulatedCarParkErrorIsWithinHalfToTwiceTheReportedSigma) {
   }
   std::sort(t_ratios.begin(), t_ratios.end());
   std::sort(r_ratios.begin(), r_ratios.end());
-  std::printf("car park, three draws: |t error| / sigma_t %.2f %.2f %.2f, |r error| / sigma_r "
-              "%.2f %.2f %.2f\n",
-              t_ratios[0], t_ratios[1], t_ratios[2], r_ratios[0], r_ratios[1], r_ratios[2]);
+  std::printf(
+      "car park, three draws: |t error| / sigma_t %.2f %.2f %.2f, |r error| / sigma_r "
+      "%.2f %.2f %.2f\n",
+      t_ratios[0], t_ratios[1], t_ratios[2], r_ratios[0], r_ratios[1], r_ratios[2]);
   EXPECT_GT(t_ratios[1], 0.5);
   EXPECT_LT(t_ratios[1], 2.0);
   EXPECT_GT(r_ratios[1], 0.5);
