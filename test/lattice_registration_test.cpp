@@ -120,6 +120,45 @@ TEST(SurfaceNormals, ANoiseThickenedScanLineIsNotASurfaceButAPlaneIs) {
   EXPECT_NEAR(std::abs(plane_map.normalAt(Point(0.5, 0.5, 0.0)).z()), 1.0, 1e-6);
 }
 
+// Two single VLP-16 revolutions 3 m and 31 deg apart (scripts/benchmark_scan_pairs' scan_* rows):
+// sparse against sparse, the kept-aside "two sparse outdoor scans" regime.
+TEST(ScanPair, DenseOffsetPutsTheMapsSensorWhereItSays) {
+  MapSimulationOptions options = carParkOptions(DenseSensor::kVlp16, false);
+  options.dense_revolutions = 1;
+  options.velodyne_revolutions = 1;
+  options.dense_offset_set = true;
+  options.dense_offset = Eigen::Vector3d(3.0, 0.0, 31.0);
+  const SimulatedMaps maps = simulateMaps(options);
+  ASSERT_EQ(maps.dense_lidar_poses.size(), 1u);
+  ASSERT_EQ(maps.velodyne_poses.size(), 1u);
+  // The sparse sensor in the scene (dense) frame, then the dense sensor relative to it.
+  const Eigen::Isometry3d sparse_in_scene = maps.T_target_source * maps.velodyne_poses[0];
+  const Eigen::Vector3d offset =
+      maps.dense_lidar_poses[0].translation() - sparse_in_scene.translation();
+  EXPECT_NEAR(offset.x(), 3.0, 1e-9);
+  EXPECT_NEAR(offset.y(), 0.0, 1e-9);
+  EXPECT_NEAR(offset.z(), 0.0, 1e-9);
+  const Eigen::AngleAxisd turn(sparse_in_scene.linear().transpose() *
+                               maps.dense_lidar_poses[0].linear());
+  EXPECT_NEAR(turn.angle() * 180.0 / M_PI, 31.0, 1e-6);
+  EXPECT_NEAR(std::abs(turn.axis().z()), 1.0, 1e-9);
+}
+
+TEST(ScanPair, DefaultsAlignTwoVlp16ScansThreeMetresAndThirtyOneDegreesApart) {
+  MapSimulationOptions options = carParkOptions(DenseSensor::kVlp16, false);
+  options.dense_revolutions = 1;
+  options.velodyne_revolutions = 1;
+  options.dense_offset_set = true;
+  options.dense_offset = Eigen::Vector3d(3.0, 0.0, 31.0);
+  const SimulatedMaps maps = simulateMaps(options);
+  for (uint64_t seed : {1u, 2u}) {
+    RegistrationResult result;
+    const double error = alignedError(maps, RegistrationParameters(), 5.0, 0.25, seed, &result);
+    EXPECT_TRUE(result.converged) << result.reason;
+    EXPECT_LT(error, 0.03) << "perturbation seed " << seed;  // GICP: 2.1 cm on this pair
+  }
+}
+
 TEST(SimulationOptions, AKinectCannotMapTheOutdoorSceneNorServeTheSamePoseCase) {
   MapSimulationOptions options;
   options.scene = SceneKind::kOutdoor;
@@ -128,6 +167,10 @@ TEST(SimulationOptions, AKinectCannotMapTheOutdoorSceneNorServeTheSamePoseCase) 
   options.same_pose = true;
   EXPECT_NE(validateSimulationOptions(options), "");
   options.dense_sensor = DenseSensor::kVlp16;
+  EXPECT_EQ(validateSimulationOptions(options), "");
+  options.dense_offset_set = true;  // a scan pair's offset and the same pose exclude each other
+  EXPECT_NE(validateSimulationOptions(options), "");
+  options.same_pose = false;
   EXPECT_EQ(validateSimulationOptions(options), "");
 }
 

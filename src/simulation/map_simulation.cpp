@@ -101,6 +101,8 @@ std::string validateSimulationOptions(const MapSimulationOptions& options) {
   if (options.sparse_sensor == SparseSensor::kKinectFragment &&
       (options.scene != SceneKind::kOffice || options.dense_sensor != DenseSensor::kKinect))
     return "a Kinect fragment source needs the office scene and a Kinect dense map";
+  if (options.dense_offset_set && (options.same_pose || options.dense_sensor == DenseSensor::kKinect))
+    return "dense_offset needs a lidar dense sensor and no same_pose";
   if (options.dense_revolutions < 1) return "dense_revolutions must be >= 1";
   if (options.velodyne_revolutions < 1) return "velodyne_revolutions must be >= 1";
   return "";
@@ -153,9 +155,17 @@ SimulatedMaps simulateMaps(const MapSimulationOptions& options) {
                   : kinectTrajectory(maps.office, options.kinect_frames);
     dense = kinectScan(maps, maps.kinect_poses, options, kKinectStream);
   } else {
-    maps.dense_lidar_poses = options.same_pose ? std::vector<Eigen::Isometry3d>(
-                                                     options.dense_revolutions, lidar_poses.front())
-                                               : denseLidarPoses(maps, options, outdoor);
+    if (options.same_pose) {
+      maps.dense_lidar_poses.assign(options.dense_revolutions, lidar_poses.front());
+    } else if (options.dense_offset_set) {
+      Eigen::Isometry3d pose = lidar_poses.front();
+      pose.translation() += Eigen::Vector3d(options.dense_offset.x(), options.dense_offset.y(), 0.0);
+      pose.linear() = Eigen::AngleAxisd(options.dense_offset.z() * kDegrees, Eigen::Vector3d::UnitZ()) *
+                      pose.linear();
+      maps.dense_lidar_poses.assign(options.dense_revolutions, pose);
+    } else {
+      maps.dense_lidar_poses = denseLidarPoses(maps, options, outdoor);
+    }
     const VelodyneParameters dense_lidar = denseLidar(options);
     for (size_t i = 0; i < maps.dense_lidar_poses.size(); ++i) {
       const PointList revolution =

@@ -50,6 +50,9 @@ const char* kUsage =
     "                            sparse scan's own pose by the same sensor (same azimuth grid),\n"
     "                            and the sparse map is one more revolution cut to the rings\n"
     "                            within +-15 deg: the same-sensor lattice case\n"
+    "  --dense-offset X,Y,YAW    lidar dense sensors: the dense revolutions are taken at the\n"
+    "                            sparse scan's pose moved by X, Y metres and turned by YAW\n"
+    "                            degrees: a scan pair (e.g. 3,0,31)\n"
     "  --kinect-frames N         depth frames around the walkway (24)\n"
     "  --velodyne-revolutions N  lidar stops around the walkway, one revolution each (3)\n"
     "  --dense-voxel M           voxel grid of the dense map in metres, 0 keeps every point "
@@ -87,7 +90,7 @@ int main(int argc, char** argv) {
                   "translation",    "distortion",
                   "seed-error-deg", "seed-error-m",
                   "dense-messages", "sparse-messages",
-                  "tf-rate"},
+                  "tf-rate",        "dense-offset"},
                  {"no-noise", "same-pose", "help"});
   if (!cl.parse(argc, argv)) return usageError(cl.error());
   if (cl.has("help")) {
@@ -102,6 +105,7 @@ int main(int argc, char** argv) {
   double seed_error_deg = 3.0, seed_error_m = 0.15;
   std::vector<double> translation = {options.translation.x(), options.translation.y(),
                                      options.translation.z()};
+  std::vector<double> dense_offset = {0.0, 0.0, 0.0};
   const bool flags_ok = cl.integer("seed", &seed, 0, 2147483647) &&
                         cl.integer("noise-seed", &noise_seed, 1, 2147483647) &&
                         cl.integer("kinect-frames", &options.kinect_frames, 1, 1000) &&
@@ -111,6 +115,7 @@ int main(int argc, char** argv) {
                         cl.number("pitch-deg", &options.pitch_deg, -90.0, 90.0) &&
                         cl.number("roll-deg", &options.roll_deg, -180.0, 180.0) &&
                         cl.numberList("translation", &translation, -1e4, 1e4) &&
+                        cl.numberList("dense-offset", &dense_offset, -1e3, 1e3) &&
                         cl.number("distortion", &options.distortion, 0.0, 0.2) &&
                         cl.number("seed-error-deg", &seed_error_deg, 0.0, 180.0) &&
                         cl.number("seed-error-m", &seed_error_m, 0.0, 1e3) &&
@@ -141,6 +146,10 @@ int main(int argc, char** argv) {
   if (!cl.integer("dense-revolutions", &options.dense_revolutions, 1, 100))
     return usageError(cl.error());
   options.same_pose = cl.has("same-pose");
+  if (dense_offset.size() != 3)
+    return usageError("--dense-offset: expected X,Y,YAW (e.g. 3,0,31)");
+  options.dense_offset_set = cl.has("dense-offset");
+  options.dense_offset = Eigen::Vector3d(dense_offset[0], dense_offset[1], dense_offset[2]);
   // A lidar map is kept whole: a voxel grid would average away its scan lattice.
   if (!cl.has("dense-voxel") && options.dense_sensor != DenseSensor::kKinect)
     options.dense_voxel_size = 0.0;

@@ -62,6 +62,11 @@ struct MapSimulationOptions {
   /// Every sparse return then lies on the dense map's sampling lattice: the case where a yaw of
   /// whole azimuth steps fits the ground almost as well as the truth.
   bool same_pose = false;
+  /// Lidar dense sensors only (and not with same_pose): the dense revolutions are taken from the
+  /// sparse scan's (first) pose moved by (x, y) metres and turned by z degrees about the vertical:
+  /// a scan pair, e.g. two sparse scans a few metres and a few tens of degrees apart.
+  bool dense_offset_set = false;
+  Eigen::Vector3d dense_offset = Eigen::Vector3d::Zero();  ///< (x [m], y [m], yaw [deg])
   int kinect_frames = 24;          ///< depth frames around the walkway loop (per fragment)
   int velodyne_revolutions = 3;    ///< lidar stops around the loop, one revolution each
   double dense_voxel_size = 0.03;  ///< [m] voxel grid of the accumulated dense map; 0 keeps all
