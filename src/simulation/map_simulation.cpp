@@ -103,6 +103,9 @@ std::string validateSimulationOptions(const MapSimulationOptions& options) {
     return "a Kinect fragment source needs the office scene and a Kinect dense map";
   if (options.dense_offset_set && (options.same_pose || options.dense_sensor == DenseSensor::kKinect))
     return "dense_offset needs a lidar dense sensor and no same_pose";
+  if (options.scan_frame &&
+      (options.velodyne_revolutions != 1 || options.sparse_sensor != SparseSensor::kVlp16))
+    return "scan_frame needs a single VLP-16 revolution as the sparse map";
   if (options.dense_revolutions < 1) return "dense_revolutions must be >= 1";
   if (options.velodyne_revolutions < 1) return "velodyne_revolutions must be >= 1";
   return "";
@@ -144,6 +147,7 @@ SimulatedMaps simulateMaps(const MapSimulationOptions& options) {
 
   std::vector<Eigen::Isometry3d> lidar_poses = sparseLidarPoses(maps, options, outdoor);
   if (options.same_pose) lidar_poses.resize(1);  // one scan, re-observed by the same sensor
+  if (options.scan_frame) maps.T_target_source_unwarped = lidar_poses.front();
   const VelodyneParameters sparse_lidar =
       options.same_pose ? sameSensorSparseLidar(options) : options.velodyne;
 

@@ -53,6 +53,9 @@ const char* kUsage =
     "  --dense-offset X,Y,YAW    lidar dense sensors: the dense revolutions are taken at the\n"
     "                            sparse scan's pose moved by X, Y metres and turned by YAW\n"
     "                            degrees: a scan pair (e.g. 3,0,31)\n"
+    "  --scan-frame              the sparse map (one VLP-16 revolution) in its sensor's own\n"
+    "                            frame, as a real scan: the ground truth is the sensor's pose\n"
+    "                            (--yaw-deg, --translation etc. are then not used)\n"
     "  --kinect-frames N         depth frames around the walkway (24)\n"
     "  --velodyne-revolutions N  lidar stops around the walkway, one revolution each (3)\n"
     "  --dense-voxel M           voxel grid of the dense map in metres, 0 keeps every point "
@@ -91,7 +94,7 @@ int main(int argc, char** argv) {
                   "seed-error-deg", "seed-error-m",
                   "dense-messages", "sparse-messages",
                   "tf-rate",        "dense-offset"},
-                 {"no-noise", "same-pose", "help"});
+                 {"no-noise", "same-pose", "scan-frame", "help"});
   if (!cl.parse(argc, argv)) return usageError(cl.error());
   if (cl.has("help")) {
     std::cout << kUsage;
@@ -149,6 +152,11 @@ int main(int argc, char** argv) {
   if (dense_offset.size() != 3)
     return usageError("--dense-offset: expected X,Y,YAW (e.g. 3,0,31)");
   options.dense_offset_set = cl.has("dense-offset");
+  options.scan_frame = cl.has("scan-frame");
+  if (options.scan_frame && (cl.has("yaw-deg") || cl.has("pitch-deg") || cl.has("roll-deg") ||
+                             cl.has("translation")))
+    return usageError("--scan-frame sets the ground truth to the sensor's pose: drop --yaw-deg, "
+                      "--pitch-deg, --roll-deg and --translation");
   options.dense_offset = Eigen::Vector3d(dense_offset[0], dense_offset[1], dense_offset[2]);
   // A lidar map is kept whole: a voxel grid would average away its scan lattice.
   if (!cl.has("dense-voxel") && options.dense_sensor != DenseSensor::kKinect)

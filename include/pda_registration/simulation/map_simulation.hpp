@@ -67,6 +67,10 @@ struct MapSimulationOptions {
   /// a scan pair, e.g. two sparse scans a few metres and a few tens of degrees apart.
   bool dense_offset_set = false;
   Eigen::Vector3d dense_offset = Eigen::Vector3d::Zero();  ///< (x [m], y [m], yaw [deg])
+  /// One VLP-16 revolution expressed in its sensor's own frame, as a real scan comes:
+  /// T_target_source is then the sensor's pose in the dense map (yaw/pitch/roll/translation are
+  /// not used), so a perturbation turns the scan about its sensor, as a seed's error would.
+  bool scan_frame = false;
   int kinect_frames = 24;          ///< depth frames around the walkway loop (per fragment)
   int velodyne_revolutions = 3;    ///< lidar stops around the loop, one revolution each
   double dense_voxel_size = 0.03;  ///< [m] voxel grid of the accumulated dense map; 0 keeps all
