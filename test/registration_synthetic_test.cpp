@@ -52,6 +52,11 @@ TEST_P(SyntheticRegistration, RecoversKnownTransformWithNoiseAndOutliers) {
   // 600 outliers among 2600 points (77% inliers, 1 cm noise): the inlier share says so.
   EXPECT_GT(r.inlier_fraction, 0.5);
   EXPECT_LT(r.inlier_fraction, 0.85);
+  // Outliers far from every wall drop out of the overlap, so the support (inliers among the
+  // overlapping points) is at least the inlier fraction.
+  EXPECT_LE(r.overlap_points, r.source_points_used);
+  EXPECT_GE(r.support_fraction, r.inlier_fraction);
+  EXPECT_LE(r.support_fraction, 1.0);
   EXPECT_LT(r.sigma, 0.05);
 }
 

@@ -33,13 +33,15 @@ void judgeConvergence(const RegistrationParameters& p, bool came_to_rest,
     // The clouds were never brought onto each other, however still the estimate came to rest.
     reason << "unresolved: the residual scale sigma " << r.sigma << " is not below radius / 6 ("
            << p.radius / 6.0 << "): the estimate is not at a fit of the two clouds";
-  } else if (r.inlier_fraction < p.min_support_fraction) {
+  } else if (r.support_fraction < p.min_support_fraction) {
     // sigma has settled on a small subset that fits almost exactly (a lattice alias of two scans
-    // of one lidar, only the ground rings): the rest of the source says the pose is wrong.
-    reason << "unsupported: only " << 100.0 * r.inlier_fraction << " % of the source lies within "
+    // of one lidar, only the ground rings): the rest of the overlap says the pose is wrong. Source
+    // points with no target point within radius (what only the source saw) do not count.
+    reason << "unsupported: only " << 100.0 * r.support_fraction << " % of the "
+           << r.overlap_points << " source points that overlap the target lie within "
            << p.inlier_sigmas << " sigma (sigma " << r.sigma
-           << ") of the target; the estimate rests on a subset (need "
-           << 100.0 * p.min_support_fraction << " %)";
+           << ") of it; the estimate rests on a subset (need " << 100.0 * p.min_support_fraction
+           << " %)";
   } else {
     r.converged = true;
   }

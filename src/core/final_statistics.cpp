@@ -1,5 +1,6 @@
 #include "pda_registration/core/final_statistics.hpp"
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <limits>
@@ -12,10 +13,29 @@
 namespace pda_registration {
 namespace {
 
-// Inlier fraction over all used source points, and the mean distance of inliers to their
-// nearest candidate, at the final estimate.
+// Source points with a target point within `radius` of them at T. A point with candidates has
+// one (the candidates were searched within at most `radius`); the others are looked up.
+size_t countOverlap(const TargetIndex& index, const PointList& source,
+                    const CandidateSets& candidates, const Eigen::Isometry3d& T, double radius,
+                    int threads) {
+  size_t overlap = 0;
+#pragma omp parallel for schedule(dynamic, 256) reduction(+ : overlap) num_threads(std::max(threads, 1))
+  for (long long j = 0; j < static_cast<long long>(candidates.sourceCount()); ++j) {
+    if (candidates.candidateCount(j) > 0) {
+      ++overlap;
+      continue;
+    }
+    size_t nearest = 0;
+    double squared_distance = 0.0;
+    overlap += index.nearestWithinRadius(T * source[j], 1, radius, &nearest, &squared_distance);
+  }
+  return overlap;
+}
+
+// Inlier fraction over all used source points and over the overlap, and the mean distance of
+// inliers to their nearest candidate, at the final estimate.
 void fillInlierStatistics(const PointList& source, const CandidateSets& candidates,
-                          const Eigen::Isometry3d& T, double inlier_distance,
+                          const Eigen::Isometry3d& T, double inlier_distance, size_t overlap,
                           RegistrationResult* result) {
   size_t inliers = 0;
   double distance_sum = 0.0;
@@ -35,12 +55,16 @@ void fillInlierStatistics(const PointList& source, const CandidateSets& candidat
   result->inlier_fraction =
       source.empty() ? 0.0 : static_cast<double>(inliers) / static_cast<double>(source.size());
   result->mean_residual = inliers == 0 ? 0.0 : distance_sum / static_cast<double>(inliers);
+  result->overlap_points = overlap;
+  result->support_fraction =
+      overlap == 0 ? 0.0 : static_cast<double>(inliers) / static_cast<double>(overlap);
 }
 
 }  // namespace
 
 // Covariance, inlier statistics and the degeneracy check at the final estimate.
-void fillFinalStatistics(const PointList& source, const SurfaceNormalMap& normal_map,
+void fillFinalStatistics(const PointList& source, const TargetIndex& index,
+                         const SurfaceNormalMap& normal_map,
                          const RegistrationParameters& p, const EmState& state,
                          RegistrationWorkspace* workspace, RegistrationResult* result,
                          Associations* associations) {
@@ -67,7 +91,9 @@ void fillFinalStatistics(const PointList& source, const SurfaceNormalMap& normal
   result->covariance_ms =
       std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - covariance_start)
           .count();
-  fillInlierStatistics(source, candidates, state.T, p.inlier_sigmas * result->sigma, result);
+  fillInlierStatistics(source, candidates, state.T, p.inlier_sigmas * result->sigma,
+                       countOverlap(index, source, candidates, state.T, p.radius, p.threads),
+                       result);
   PointList moved(source.size());
   for (size_t j = 0; j < source.size(); ++j) moved[j] = state.T * source[j];
   result->degeneracy_ratio = constraintEigenvalueRatio(moved, normals);

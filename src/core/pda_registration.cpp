@@ -330,7 +330,7 @@ RegistrationResult PdaRegistration::alignUnchecked(const PointList& source_input
   if (candidates.sourceCount() != source.size()) {
     findCandidateSets(*index, source, T, p.k, p.radius, p.threads, &workspace_.search, &candidates);
   }
-  fillFinalStatistics(source, *normal_map, p, state, &workspace_, &result, associations);
+  fillFinalStatistics(source, *index, *normal_map, p, state, &workspace_, &result, associations);
 
   judgeConvergence(p, result.converged, last_run_step, &result);
   return result;

@@ -53,6 +53,7 @@ void AlignmentStatus::fill(diagnostic_updater::DiagnosticStatusWrapper& status,
   status.add("expected error [cm]", 100.0 * s.expected_error.translation);
   status.add("expected error [deg]", s.expected_error.rotation * 180.0 / M_PI);
   status.add("inlier fraction", r.inlier_fraction);
+  status.add("support fraction", r.support_fraction);  // inliers among the overlapping points
   status.add("runs", r.runs);
   status.add("alignment time [ms]", r.time_ms);
   status.add("latency [ms]", s.last_latency_ms);

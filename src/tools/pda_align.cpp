@@ -114,6 +114,7 @@ int main(int argc, char** argv) {
     json.add("runs", r.runs).add("em_iterations", r.em_iterations).add("sigma", r.sigma);
     json.add("nu", r.nu);
     json.add("inlier_fraction", r.inlier_fraction).add("mean_residual", r.mean_residual);
+    json.add("overlap_points", r.overlap_points).add("support_fraction", r.support_fraction);
     json.add("source_points", r.source_points_used).add("source_dropped", r.source_points_dropped);
     json.add("target_points", r.target_points_used).add("target_dropped", r.target_points_dropped);
     json.add("target_points_total", r.target_points_total).add("target_cropped", r.target_cropped);

@@ -87,7 +87,8 @@ std::string settingsFlagsHelp() {
        << ")\n"
        << "  --translation-epsilon E convergence threshold [m] (" << p.translation_epsilon << ")\n"
        << "  --rotation-epsilon E    convergence threshold [rad] (" << p.rotation_epsilon << ")\n"
-       << "  --min-support F         fewer inliers than this fraction of the source = not\n"
+       << "  --min-support F         fewer inliers than this fraction of the source points\n"
+       << "                          that have a target point within --radius = not\n"
        << "                          converged (" << p.min_support_fraction << ")\n"
        << "  --max-source N          align a random subsample of at most N source points, as the\n"
        << "                          nodelet's max_source_points; 0 = all (" << p.max_source_points

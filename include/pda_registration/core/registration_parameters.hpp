@@ -86,8 +86,9 @@ struct RegistrationParameters {
   // --- Acceptance ----------------------------------------------------------------------------
   int min_correspondences = 10;  ///< fewer source points with candidates: not converged
   double inlier_sigmas = 3.0;    ///< a source point is an inlier if its best residual < this*sigma
-  /// A result with fewer inliers than this fraction of the source is not converged: sigma has
-  /// collapsed onto a subset (a lattice alias, only the ground) that the rest contradicts.
+  /// A result with fewer inliers than this fraction of the overlap (the source points with a
+  /// target point within `radius`) is not converged: sigma has collapsed onto a subset (a lattice
+  /// alias, only the ground) that the rest contradicts.
   double min_support_fraction = 0.1;
   double degeneracy_threshold = 1e-3;  ///< min/max eigenvalue ratio of the constraint matrix
   // --- Execution -----------------------------------------------------------------------------

@@ -42,6 +42,12 @@ struct RegistrationResult {
   size_t target_points_dropped = 0;          ///< NaN/Inf target points dropped
   size_t source_points_with_candidates = 0;  ///< in the last run
   double inlier_fraction = 0.0;  ///< source points whose best residual is under inlier_sigmas*sigma
+  /// Source points with a target point within `radius` at the final estimate: where the two
+  /// clouds overlap. The rest (parts of the scene only the source saw) neither support nor
+  /// contradict the estimate.
+  size_t overlap_points = 0;
+  /// Inliers among the overlap_points: what the verdict's min_support_fraction is compared with.
+  double support_fraction = 0.0;
   double mean_residual = 0.0;    ///< [length] mean distance to the best candidate, inliers only
   double degeneracy_ratio = 0.0;  ///< min/max eigenvalue of the point-to-plane constraint matrix
   double time_ms = 0.0;  ///< wall time of align(), including any (re)indexing of a large target
