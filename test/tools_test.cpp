@@ -211,8 +211,7 @@ TEST(PdaAlign, AlignsARealCaseAndReportsErrorsAgainstGroundTruth) {
   EXPECT_NE(run.out.find("\"converged\":true"), std::string::npos);
   for (const char* key :
        {"time_ms", "runs", "sigma", "inlier_fraction", "support_fraction", "mean_distance",
-        "rot_err_deg",
-        "trans_err_m", "peak_rss_mb", "expected_error_m", "expected_error_deg"}) {
+        "rot_err_deg", "trans_err_m", "peak_rss_mb", "expected_error_m", "expected_error_deg"}) {
     EXPECT_FALSE(std::isnan(jsonNumber(run.out, key))) << key << " missing in " << run.out;
   }
   // The covariance's expected error: positive, and of the size of the errors made (room_scan's

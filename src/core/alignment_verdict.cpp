@@ -37,11 +37,10 @@ void judgeConvergence(const RegistrationParameters& p, bool came_to_rest,
     // sigma has settled on a small subset that fits almost exactly (a lattice alias of two scans
     // of one lidar, only the ground rings): the rest of the overlap says the pose is wrong. Source
     // points with no target point within radius (what only the source saw) do not count.
-    reason << "unsupported: only " << 100.0 * r.support_fraction << " % of the "
-           << r.overlap_points << " source points that overlap the target lie within "
-           << p.inlier_sigmas << " sigma (sigma " << r.sigma
-           << ") of it; the estimate rests on a subset (need " << 100.0 * p.min_support_fraction
-           << " %)";
+    reason << "unsupported: only " << 100.0 * r.support_fraction << " % of the " << r.overlap_points
+           << " source points that overlap the target lie within " << p.inlier_sigmas
+           << " sigma (sigma " << r.sigma << ") of it; the estimate rests on a subset (need "
+           << 100.0 * p.min_support_fraction << " %)";
   } else {
     r.converged = true;
   }

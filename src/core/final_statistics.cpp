@@ -19,7 +19,8 @@ size_t countOverlap(const TargetIndex& index, const PointList& source,
                     const CandidateSets& candidates, const Eigen::Isometry3d& T, double radius,
                     int threads) {
   size_t overlap = 0;
-#pragma omp parallel for schedule(dynamic, 256) reduction(+ : overlap) num_threads(std::max(threads, 1))
+#pragma omp parallel for schedule(dynamic, 256) reduction(+ : overlap) \
+    num_threads(std::max(threads, 1))
   for (long long j = 0; j < static_cast<long long>(candidates.sourceCount()); ++j) {
     if (candidates.candidateCount(j) > 0) {
       ++overlap;
@@ -64,10 +65,9 @@ void fillInlierStatistics(const PointList& source, const CandidateSets& candidat
 
 // Covariance, inlier statistics and the degeneracy check at the final estimate.
 void fillFinalStatistics(const PointList& source, const TargetIndex& index,
-                         const SurfaceNormalMap& normal_map,
-                         const RegistrationParameters& p, const EmState& state,
-                         RegistrationWorkspace* workspace, RegistrationResult* result,
-                         Associations* associations) {
+                         const SurfaceNormalMap& normal_map, const RegistrationParameters& p,
+                         const EmState& state, RegistrationWorkspace* workspace,
+                         RegistrationResult* result, Associations* associations) {
   const CandidateSets& candidates = workspace->candidates;
   computeShapeInputs(normal_map, source, candidates, state.T, p, &workspace->normals,
                      &workspace->spread);

@@ -101,7 +101,8 @@ std::string validateSimulationOptions(const MapSimulationOptions& options) {
   if (options.sparse_sensor == SparseSensor::kKinectFragment &&
       (options.scene != SceneKind::kOffice || options.dense_sensor != DenseSensor::kKinect))
     return "a Kinect fragment source needs the office scene and a Kinect dense map";
-  if (options.dense_offset_set && (options.same_pose || options.dense_sensor == DenseSensor::kKinect))
+  if (options.dense_offset_set &&
+      (options.same_pose || options.dense_sensor == DenseSensor::kKinect))
     return "dense_offset needs a lidar dense sensor and no same_pose";
   if (options.scan_frame &&
       (options.velodyne_revolutions != 1 || options.sparse_sensor != SparseSensor::kVlp16))
@@ -163,9 +164,11 @@ SimulatedMaps simulateMaps(const MapSimulationOptions& options) {
       maps.dense_lidar_poses.assign(options.dense_revolutions, lidar_poses.front());
     } else if (options.dense_offset_set) {
       Eigen::Isometry3d pose = lidar_poses.front();
-      pose.translation() += Eigen::Vector3d(options.dense_offset.x(), options.dense_offset.y(), 0.0);
-      pose.linear() = Eigen::AngleAxisd(options.dense_offset.z() * kDegrees, Eigen::Vector3d::UnitZ()) *
-                      pose.linear();
+      pose.translation() +=
+          Eigen::Vector3d(options.dense_offset.x(), options.dense_offset.y(), 0.0);
+      pose.linear() =
+          Eigen::AngleAxisd(options.dense_offset.z() * kDegrees, Eigen::Vector3d::UnitZ()) *
+          pose.linear();
       maps.dense_lidar_poses.assign(options.dense_revolutions, pose);
     } else {
       maps.dense_lidar_poses = denseLidarPoses(maps, options, outdoor);

@@ -149,14 +149,14 @@ int main(int argc, char** argv) {
   if (!cl.integer("dense-revolutions", &options.dense_revolutions, 1, 100))
     return usageError(cl.error());
   options.same_pose = cl.has("same-pose");
-  if (dense_offset.size() != 3)
-    return usageError("--dense-offset: expected X,Y,YAW (e.g. 3,0,31)");
+  if (dense_offset.size() != 3) return usageError("--dense-offset: expected X,Y,YAW (e.g. 3,0,31)");
   options.dense_offset_set = cl.has("dense-offset");
   options.scan_frame = cl.has("scan-frame");
-  if (options.scan_frame && (cl.has("yaw-deg") || cl.has("pitch-deg") || cl.has("roll-deg") ||
-                             cl.has("translation")))
-    return usageError("--scan-frame sets the ground truth to the sensor's pose: drop --yaw-deg, "
-                      "--pitch-deg, --roll-deg and --translation");
+  if (options.scan_frame &&
+      (cl.has("yaw-deg") || cl.has("pitch-deg") || cl.has("roll-deg") || cl.has("translation")))
+    return usageError(
+        "--scan-frame sets the ground truth to the sensor's pose: drop --yaw-deg, "
+        "--pitch-deg, --roll-deg and --translation");
   options.dense_offset = Eigen::Vector3d(dense_offset[0], dense_offset[1], dense_offset[2]);
   // A lidar map is kept whole: a voxel grid would average away its scan lattice.
   if (!cl.has("dense-voxel") && options.dense_sensor != DenseSensor::kKinect)

@@ -13,9 +13,8 @@ namespace pda_registration {
 /// Uses the workspace's candidate sets (for every source point) and its memory; `index` finds the
 /// overlap of the source points without candidates.
 void fillFinalStatistics(const PointList& source, const TargetIndex& index,
-                         const SurfaceNormalMap& normal_map,
-                         const RegistrationParameters& p, const EmState& state,
-                         RegistrationWorkspace* workspace, RegistrationResult* result,
-                         Associations* associations);
+                         const SurfaceNormalMap& normal_map, const RegistrationParameters& p,
+                         const EmState& state, RegistrationWorkspace* workspace,
+                         RegistrationResult* result, Associations* associations);
 
 }  // namespace pda_registration
