@@ -203,6 +203,7 @@ RegistrationResult PdaRegistration::alignUnchecked(const PointList& source_input
   if (target_map_.builds() != builds_before) result.target_index_ms = target_map_.lastBuildMs();
   result.target_cropped = target_map_.cropped();
   result.target_subset_voxel = target_map_.subsetVoxel();
+  result.normal_voxel_size = target_map_.normalVoxelSize();
   const std::shared_ptr<const TargetIndex> index = target_map_.index();
   const std::shared_ptr<const SurfaceNormalMap> normal_map =
       target_map_.normals() ? target_map_.normals() : std::make_shared<const SurfaceNormalMap>();

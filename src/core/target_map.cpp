@@ -7,6 +7,7 @@
 
 #include "pda_registration/core/point_filter.hpp"
 #include "pda_registration/core/representative_subset.hpp"
+#include "pda_registration/core/scan_line_scale.hpp"
 
 namespace pda_registration {
 namespace {
@@ -150,6 +151,7 @@ void TargetMap::clear() {
   have_indexing_ = false;
   cropped_ = false;
   subset_voxel_ = 0.0;
+  normal_voxel_size_ = 0.0;
 }
 
 bool TargetMap::prepare(const TargetIndexing& indexing, const AlignedBox& region) {
@@ -237,7 +239,10 @@ bool TargetMap::build(const TargetIndexing& indexing, const AlignedBox* crop) {
     return false;
   }
   try {
-    normals_ = std::make_shared<SurfaceNormalMap>(index_->points(), indexing.normal_voxel_size);
+    // The finest voxel is raised to the target's scan-line scale (scan_line_scale.hpp), measured
+    // once here: a map that grows later keeps it, as its normal map keeps its voxels.
+    normal_voxel_size_ = std::max(indexing.normal_voxel_size, scanLineScale(*index_));
+    normals_ = std::make_shared<SurfaceNormalMap>(index_->points(), normal_voxel_size_);
   } catch (const std::exception&) {
     normals_ = std::make_shared<SurfaceNormalMap>();  // no normals: isotropic fallback
   }

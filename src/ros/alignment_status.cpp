@@ -54,6 +54,8 @@ void AlignmentStatus::fill(diagnostic_updater::DiagnosticStatusWrapper& status,
   status.add("expected error [deg]", s.expected_error.rotation * 180.0 / M_PI);
   status.add("inlier fraction", r.inlier_fraction);
   status.add("support fraction", r.support_fraction);  // inliers among the overlapping points
+  // The normal map's finest voxel: normal_voxel_size, or the map's scan-line scale if larger.
+  status.add("normal voxel [m]", r.normal_voxel_size);
   status.add("runs", r.runs);
   status.add("alignment time [ms]", r.time_ms);
   status.add("latency [ms]", s.last_latency_ms);

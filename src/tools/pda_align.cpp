@@ -119,6 +119,7 @@ int main(int argc, char** argv) {
     json.add("target_points", r.target_points_used).add("target_dropped", r.target_points_dropped);
     json.add("target_points_total", r.target_points_total).add("target_cropped", r.target_cropped);
     json.add("target_subset_voxel", r.target_subset_voxel);
+    json.add("normal_voxel_size", r.normal_voxel_size);
     json.add("roles_swapped", r.roles_swapped);
     json.add("target_index_ms", r.target_index_ms);
     json.add("source_with_candidates", r.source_points_with_candidates);

@@ -34,6 +34,9 @@ struct RegistrationResult {
   size_t target_points_total = 0;            ///< finite target points kept (before any crop)
   bool target_cropped = false;               ///< the index covers only the source's reach
   double target_subset_voxel = 0.0;  ///< [length] grid of the indexed voxel means (0: every point)
+  /// [length] finest voxel of the target's normal map: normal_voxel_size, or the target's
+  /// scan-line scale where that is larger (scan_line_scale.hpp)
+  double normal_voxel_size = 0.0;
   /// The usual direction did not converge and the source is the denser cloud, so the target was
   /// aligned onto it and the answer inverted (alignment_direction.hpp); the statistics (sigma,
   /// inliers, candidates) are of that run.

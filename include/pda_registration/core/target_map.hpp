@@ -49,7 +49,8 @@ struct TargetIndexing {
   /// Index the voxel means on this grid when the cloud holds at least kMuchFinerRedundancy
   /// points per occupied voxel (representative_subset.hpp); 0 = every point.
   double subset_voxel = 0.0;
-  double normal_voxel_size = 0.15;  ///< finest voxel of the normal map
+  /// Finest voxel of the normal map, raised to the target's scan-line scale where that is larger.
+  double normal_voxel_size = 0.15;
   /// Targets with more finite points than this are cropped to the source's reach (0 = never).
   size_t crop_above_points = 0;
 
@@ -99,6 +100,8 @@ class TargetMap {
   std::shared_ptr<const TargetIndex> index() const { return index_; }
   std::shared_ptr<const SurfaceNormalMap> normals() const { return normals_; }
   bool cropped() const { return cropped_; }
+  /// The normal map's finest voxel: TargetIndexing's, or the target's scan-line scale if larger.
+  double normalVoxelSize() const { return normal_voxel_size_; }
   /// The grid of the indexed voxel means (subset_voxel); 0 when every point (of the crop) is.
   double subsetVoxel() const { return subset_voxel_; }
   /// Wall time of the last (re)build [ms], and how many builds so far (for tests and reports).
@@ -126,6 +129,7 @@ class TargetMap {
   TargetIndexing indexing_;
   bool cropped_ = false;
   double subset_voxel_ = 0.0;
+  double normal_voxel_size_ = 0.0;
   AlignedBox indexed_region_;  // valid when cropped_
   double last_build_ms_ = 0.0;
   size_t builds_ = 0;

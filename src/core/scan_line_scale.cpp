@@ -1,0 +1,57 @@
+#include "pda_registration/core/scan_line_scale.hpp"
+
+#include <Eigen/Eigenvalues>
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <vector>
+
+namespace pda_registration {
+namespace {
+
+constexpr int kFewest = 8;    // a neighbourhood's spread is judged from this many points on
+constexpr int kMost = 64;     // and no further: beyond, the point counts as on a line
+constexpr double kTwoDimensional = 0.1;  // second / first principal variance (surface_normals)
+
+}  // namespace
+
+double scanLineScale(const TargetIndex& index, size_t samples) {
+  const PointList& points = index.points();
+  if (points.size() < static_cast<size_t>(kFewest) || samples == 0) return 0.0;
+  size_t neighbours[kMost];
+  double squared[kMost];
+  std::vector<double> scales;
+  scales.reserve(std::min(samples, points.size()));
+  const size_t step = std::max<size_t>(1, points.size() / samples);
+  for (size_t i = 0; i < points.size(); i += step) {
+    const size_t found = index.nearestWithinRadius(
+        points[i], kMost, std::numeric_limits<double>::infinity(), neighbours, squared);
+    if (found < static_cast<size_t>(kFewest)) continue;
+    double scale = std::sqrt(squared[found - 1]);
+    // Moments relative to the sample itself, which is its own nearest neighbour.
+    Eigen::Vector3d sum = Eigen::Vector3d::Zero();
+    Eigen::Matrix3d outer = Eigen::Matrix3d::Zero();
+    Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eigen;
+    for (size_t m = 0; m < found; ++m) {
+      const Eigen::Vector3d offset = points[neighbours[m]] - points[i];
+      sum += offset;
+      outer += offset * offset.transpose();
+      const double count = static_cast<double>(m + 1);
+      if (m + 1 < static_cast<size_t>(kFewest)) continue;
+      const Eigen::Vector3d mean = sum / count;
+      eigen.computeDirect(outer / count - mean * mean.transpose());
+      const Eigen::Vector3d& variances = eigen.eigenvalues();  // ascending
+      if (variances(2) > 0.0 && variances(1) >= kTwoDimensional * variances(2)) {
+        scale = std::sqrt(squared[m]);
+        break;
+      }
+    }
+    scales.push_back(scale);
+  }
+  if (scales.empty()) return 0.0;
+  const auto middle = scales.begin() + static_cast<long>(scales.size() / 2);
+  std::nth_element(scales.begin(), middle, scales.end());
+  return *middle;
+}
+
+}  // namespace pda_registration
