@@ -74,8 +74,9 @@ std::string settingsFlagsHelp() {
        << "  --sampling-scale S      sampling model: along-surface tolerance in units of the\n"
        << "                          target's local sampling spread, 0 = constant kappa ("
        << p.sampling_scale << ")\n"
-       << "  --normal-voxel V        voxel of the target normal map [m] (" << p.normal_voxel_size
-       << ")\n"
+       << "  --normal-voxel V        finest voxel of the target normal map [m], raised to\n"
+       << "                          the target's scan-line scale where larger ("
+       << p.normal_voxel_size << ")\n"
        << "  --sigma-mode M          estimated | fixed (" << toString(p.sigma_mode) << ")\n"
        << "  --nu-mode M             fixed | estimated by EM from --nu on (" << toString(p.nu_mode)
        << ")\n"
