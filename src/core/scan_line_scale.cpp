@@ -9,8 +9,8 @@
 namespace pda_registration {
 namespace {
 
-constexpr int kFewest = 8;    // a neighbourhood's spread is judged from this many points on
-constexpr int kMost = 64;     // and no further: beyond, the point counts as on a line
+constexpr int kFewest = 8;  // a neighbourhood's spread is judged from this many points on
+constexpr int kMost = 64;   // and no further: beyond, the point counts as on a line
 constexpr double kTwoDimensional = 0.1;  // second / first principal variance (surface_normals)
 
 }  // namespace
