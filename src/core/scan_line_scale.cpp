@@ -10,6 +10,7 @@ namespace pda_registration {
 namespace {
 
 constexpr int kFewest = 8;  // a neighbourhood's spread is judged from this many points on
+constexpr int kFirst = 16;  // asked for first (most two-dimensional neighbourhoods need no more)
 constexpr int kMost = 64;   // and no further: beyond, the point counts as on a line
 constexpr double kTwoDimensional = 0.1;  // second / first principal variance (surface_normals)
 
@@ -24,28 +25,38 @@ double scanLineScale(const TargetIndex& index, size_t samples) {
   scales.reserve(std::min(samples, points.size()));
   const size_t step = std::max<size_t>(1, points.size() / samples);
   for (size_t i = 0; i < points.size(); i += step) {
-    const size_t found = index.nearestWithinRadius(
-        points[i], kMost, std::numeric_limits<double>::infinity(), neighbours, squared);
+    // Most neighbourhoods of a map sampled in two directions are two-dimensional within a few
+    // neighbours: ask for kFirst first, and for kMost only when those were not enough. The k
+    // nearest are a prefix of the k' > k nearest (ties by index), so the answer is the same.
+    size_t found = index.nearestWithinRadius(points[i], kFirst,
+                                             std::numeric_limits<double>::infinity(), neighbours,
+                                             squared);
     if (found < static_cast<size_t>(kFewest)) continue;
-    double scale = std::sqrt(squared[found - 1]);
+    double scale = -1.0;
     // Moments relative to the sample itself, which is its own nearest neighbour.
     Eigen::Vector3d sum = Eigen::Vector3d::Zero();
     Eigen::Matrix3d outer = Eigen::Matrix3d::Zero();
     Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eigen;
-    for (size_t m = 0; m < found; ++m) {
-      const Eigen::Vector3d offset = points[neighbours[m]] - points[i];
-      sum += offset;
-      outer += offset * offset.transpose();
-      const double count = static_cast<double>(m + 1);
-      if (m + 1 < static_cast<size_t>(kFewest)) continue;
-      const Eigen::Vector3d mean = sum / count;
-      eigen.computeDirect(outer / count - mean * mean.transpose());
-      const Eigen::Vector3d& variances = eigen.eigenvalues();  // ascending
-      if (variances(2) > 0.0 && variances(1) >= kTwoDimensional * variances(2)) {
-        scale = std::sqrt(squared[m]);
-        break;
+    size_t m = 0;
+    for (bool widened = false;; widened = true) {
+      for (; m < found && scale < 0.0; ++m) {
+        const Eigen::Vector3d offset = points[neighbours[m]] - points[i];
+        sum += offset;
+        outer += offset * offset.transpose();
+        const double count = static_cast<double>(m + 1);
+        if (m + 1 < static_cast<size_t>(kFewest)) continue;
+        const Eigen::Vector3d mean = sum / count;
+        eigen.computeDirect(outer / count - mean * mean.transpose());
+        const Eigen::Vector3d& variances = eigen.eigenvalues();  // ascending
+        if (variances(2) > 0.0 && variances(1) >= kTwoDimensional * variances(2)) {
+          scale = std::sqrt(squared[m]);
+        }
       }
+      if (scale >= 0.0 || widened || found < static_cast<size_t>(kFirst)) break;
+      found = index.nearestWithinRadius(points[i], kMost, std::numeric_limits<double>::infinity(),
+                                        neighbours, squared);
     }
+    if (scale < 0.0) scale = std::sqrt(squared[found - 1]);
     scales.push_back(scale);
   }
   if (scales.empty()) return 0.0;
