@@ -17,7 +17,8 @@ namespace pda_registration {
 /// time (from the 8th up to the 64th) until they spread in two directions (second principal
 /// variance >= 0.1 of the first: the normal map's own test); the point's scale is the distance of
 /// the neighbour that did it (of the 64th when none did). Returns the median [length]; 0 for an
-/// index of fewer than 8 points. Costs 7-11 ms for 1000 samples (6.6 ms on a 3858-point target).
+/// index of fewer than 8 points. The 16 nearest are asked for first, the 64 nearest only where
+/// those are not two-dimensional: about 1 ms on a 3858-point target thinned to 0.25 m.
 double scanLineScale(const TargetIndex& index, size_t samples = 1000);
 
 }  // namespace pda_registration
