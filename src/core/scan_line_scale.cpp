@@ -6,13 +6,14 @@
 #include <limits>
 #include <vector>
 
+#include "pda_registration/core/surface_normals.hpp"
+
 namespace pda_registration {
 namespace {
 
 constexpr int kFewest = 8;  // a neighbourhood's spread is judged from this many points on
 constexpr int kFirst = 16;  // asked for first (most two-dimensional neighbourhoods need no more)
 constexpr int kMost = 64;   // and no further: beyond, the point counts as on a line
-constexpr double kTwoDimensional = 0.1;  // second / first principal variance (surface_normals)
 
 }  // namespace
 
@@ -48,7 +49,8 @@ double scanLineScale(const TargetIndex& index, size_t samples) {
         const Eigen::Vector3d mean = sum / count;
         eigen.computeDirect(outer / count - mean * mean.transpose());
         const Eigen::Vector3d& variances = eigen.eigenvalues();  // ascending
-        if (variances(2) > 0.0 && variances(1) >= kTwoDimensional * variances(2)) {
+        if (variances(2) > 0.0 &&
+            variances(1) >= SurfaceNormalMap::kTwoDimensionalSpread * variances(2)) {
           scale = std::sqrt(squared[m]);
         }
       }

@@ -21,7 +21,8 @@ bool planarNormal(double count, const Eigen::Vector3d& sum, const Eigen::Matrix3
   Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eigen;
   eigen.computeDirect(covariance);
   const Eigen::Vector3d& e = eigen.eigenvalues();  // ascending
-  if (!(e(2) > 0.0) || e(0) > 0.1 * e(1) || e(1) < 0.1 * e(2)) return false;
+  if (!(e(2) > 0.0) || e(0) > 0.1 * e(1) || e(1) < SurfaceNormalMap::kTwoDimensionalSpread * e(2))
+    return false;
   *normal = eigen.eigenvectors().col(0).normalized().cast<float>();
   return true;
 }

@@ -23,6 +23,10 @@ namespace pda_registration {
 class SurfaceNormalMap {
  public:
   static constexpr int kLevels = 6;
+  /// Points spread over a surface, not along a line, when their second principal variance is at
+  /// least this fraction of the first (an extent ratio of about 1:3). Shared with the target's
+  /// scan-line scale (scan_line_scale.hpp), which asks the same question of a neighbourhood.
+  static constexpr double kTwoDimensionalSpread = 0.1;
 
   SurfaceNormalMap() = default;
   /// finest_voxel_size <= 0 builds an empty map (every lookup says "no normal").
