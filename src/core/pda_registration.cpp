@@ -268,7 +268,10 @@ RegistrationResult PdaRegistration::alignUnchecked(const PointList& source_input
       return result;
     }
     const Eigen::Isometry3d T_run_start = state.T;
-    if (!runEm(active, *normal_map, p, &workspace_, &state, &em_settled, &result.em_iterations)) {
+    RegistrationParameters run_parameters = p;  // a few numbers: copied once a run
+    run_parameters.nu_mode = nuModeOfRun(p.nu_mode, stage == Stage::kRefine);
+    if (!runEm(active, *normal_map, run_parameters, &workspace_, &state, &em_settled,
+               &result.em_iterations)) {
       result.reason = "M-step failed: the weighted correspondences do not constrain the pose";
       return result;
     }

@@ -19,8 +19,9 @@ std::string validateParameters(const RegistrationParameters& p) {
     error << "min_radius must be > 0 and finite (got " << p.min_radius << ")";
   else if (std::isnan(p.nu) || !(p.nu > 0.0))
     error << "nu must be > 0 or inf (got " << p.nu << ")";
-  else if (p.nu_mode == NuMode::kEstimated && !std::isfinite(p.nu))
-    error << "nu_mode estimated needs a finite starting nu (got " << p.nu << ")";
+  else if (p.nu_mode != NuMode::kFixed && !std::isfinite(p.nu))
+    error << "nu_mode " << toString(p.nu_mode) << " needs a finite starting nu (got " << p.nu
+          << ")";
   else if (p.sigma_mode == SigmaMode::kFixed && !finitePositive(p.fixed_sigma))
     error << "fixed_sigma must be > 0 and finite (got " << p.fixed_sigma << ")";
   else if (p.max_em_iterations < 1 || p.max_em_iterations > 1000)
@@ -83,7 +84,22 @@ const char* toString(MStepSolver solver) {
 
 const char* toString(SigmaMode mode) { return mode == SigmaMode::kFixed ? "fixed" : "estimated"; }
 
-const char* toString(NuMode mode) { return mode == NuMode::kFixed ? "fixed" : "estimated"; }
+const char* toString(NuMode mode) {
+  switch (mode) {
+    case NuMode::kFixed:
+      return "fixed";
+    case NuMode::kEstimated:
+      return "estimated";
+    case NuMode::kRefine:
+      return "refine";
+  }
+  return "unknown";
+}
+
+NuMode nuModeOfRun(NuMode mode, bool refine_stage) {
+  if (mode != NuMode::kRefine) return mode;
+  return refine_stage ? NuMode::kEstimated : NuMode::kFixed;
+}
 
 bool parseSolver(const std::string& text, MStepSolver* solver) {
   if (text == "gauss_newton")
@@ -112,6 +128,8 @@ bool parseNuMode(const std::string& text, NuMode* mode) {
     *mode = NuMode::kFixed;
   else if (text == "estimated")
     *mode = NuMode::kEstimated;
+  else if (text == "refine")
+    *mode = NuMode::kRefine;
   else
     return false;
   return true;

@@ -78,8 +78,9 @@ std::string settingsFlagsHelp() {
        << "                          the target's scan-line scale where larger ("
        << p.normal_voxel_size << ")\n"
        << "  --sigma-mode M          estimated | fixed (" << toString(p.sigma_mode) << ")\n"
-       << "  --nu-mode M             fixed | estimated by EM from --nu on (" << toString(p.nu_mode)
-       << ")\n"
+       << "  --nu-mode M             fixed | estimated by EM from --nu on |\n"
+       << "                          refine: --nu until the refine runs, then estimated ("
+       << toString(p.nu_mode) << ")\n"
        << "  --fixed-sigma S         sigma in fixed mode [m] (" << p.fixed_sigma << ")\n"
        << "  --threads N             worker threads (" << p.threads << ")\n"
        << "  --source-voxel V        source voxel size [m], 0 = off (" << p.source_voxel_size
@@ -161,7 +162,7 @@ bool readSettingsFlags(CommandLine* cl, MethodSettings* settings,
   }
   if (given("nu-mode") && !parseNuMode(cl->text("nu-mode"), &p.nu_mode)) {
     return cl->setError("--nu-mode: " + quoted(cl->text("nu-mode")) +
-                        " is not fixed or estimated");
+                        " is not fixed, estimated or refine");
   }
   if (given("sigma-mode") && !parseSigmaMode(cl->text("sigma-mode"), &p.sigma_mode)) {
     return cl->setError("--sigma-mode: " + quoted(cl->text("sigma-mode")) +

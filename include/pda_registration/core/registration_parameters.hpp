@@ -25,7 +25,13 @@ enum class NuMode {
   kFixed,      ///< nu = the parameter throughout
   kEstimated,  ///< ECM update in every EM iteration, starting from the parameter
                ///< (degrees_of_freedom.hpp), within [1, 60]
+  kRefine,     ///< the parameter while the runs approach and settle, then the ECM update in
+               ///< the refine runs: the basin is chosen with the parameter's tails, the fit's
+               ///< own tails are estimated once it is there
 };
+
+/// The mode one run uses: kRefine is kFixed before the refine stage and kEstimated in it.
+NuMode nuModeOfRun(NuMode mode, bool refine_stage);
 
 struct RegistrationParameters {
   // --- Data association (paper Sec. IV) -----------------------------------------------------
