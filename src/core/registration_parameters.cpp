@@ -85,15 +85,8 @@ const char* toString(MStepSolver solver) {
 const char* toString(SigmaMode mode) { return mode == SigmaMode::kFixed ? "fixed" : "estimated"; }
 
 const char* toString(NuMode mode) {
-  switch (mode) {
-    case NuMode::kFixed:
-      return "fixed";
-    case NuMode::kEstimated:
-      return "estimated";
-    case NuMode::kRefine:
-      return "refine";
-  }
-  return "unknown";
+  static const char* const kNames[] = {"fixed", "estimated", "refine"};  // NuMode's order
+  return kNames[static_cast<int>(mode)];
 }
 
 NuMode nuModeOfRun(NuMode mode, bool refine_stage) {
