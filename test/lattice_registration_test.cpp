@@ -224,19 +224,37 @@ TEST(ScanPair, NuEstimatedInTheRefineRunsAlignsTwoVlp16ScansThatFixedNuMisses) {
   EXPECT_LT(refine_result.nu, fixed.nu);  // estimated: heavier tails than the parameter's
 }
 
-TEST(NuMode, RefineIsFixedUntilTheRefineRunsAndReadsAsRefine) {
-  EXPECT_EQ(nuModeOfRun(NuMode::kRefine, false), NuMode::kFixed);
-  EXPECT_EQ(nuModeOfRun(NuMode::kRefine, true), NuMode::kEstimated);
-  EXPECT_EQ(nuModeOfRun(NuMode::kFixed, true), NuMode::kFixed);
-  EXPECT_EQ(nuModeOfRun(NuMode::kEstimated, false), NuMode::kEstimated);
+TEST(NuMode, RefineIsTheDefaultAndFixedUntilTheRefineRuns) {
+  RegistrationParameters p;
+  EXPECT_EQ(p.nu_mode, NuMode::kRefine);
+  EXPECT_EQ(nuModeOfRun(p, false), NuMode::kFixed);
+  EXPECT_EQ(nuModeOfRun(p, true), NuMode::kEstimated);
+  RegistrationParameters fixed = p, estimated = p;
+  fixed.nu_mode = NuMode::kFixed;
+  estimated.nu_mode = NuMode::kEstimated;
+  EXPECT_EQ(nuModeOfRun(fixed, true), NuMode::kFixed);
+  EXPECT_EQ(nuModeOfRun(estimated, false), NuMode::kEstimated);
   NuMode parsed = NuMode::kFixed;
   ASSERT_TRUE(parseNuMode(toString(NuMode::kRefine), &parsed));
   EXPECT_EQ(parsed, NuMode::kRefine);
   EXPECT_FALSE(parseNuMode("sometimes", &parsed));
-  RegistrationParameters p;
-  p.nu_mode = NuMode::kRefine;
-  p.nu = std::numeric_limits<double>::infinity();
-  EXPECT_NE(validateParameters(p).find("refine"), std::string::npos);
+}
+
+// `gaussian: true` (nu = inf, the paper's eq. 19) must work without also changing nu_mode: the
+// default mode keeps the Gaussian in every run; only an explicit `estimated` needs a finite start.
+TEST(NuMode, AGaussianIsKeptUnderTheDefaultModeAndRefusedOnlyWhenEstimated) {
+  RegistrationParameters gaussian;
+  gaussian.nu = std::numeric_limits<double>::infinity();
+  EXPECT_EQ(validateParameters(gaussian), "");
+  EXPECT_EQ(nuModeOfRun(gaussian, true), NuMode::kFixed);
+  const SimulatedMaps maps = simulateMaps(scanPairOptions());
+  RegistrationResult result;
+  const double error = alignedError(maps, gaussian, 5.0, 0.25, 1, &result);
+  EXPECT_TRUE(result.converged) << result.reason;
+  EXPECT_TRUE(std::isinf(result.nu));
+  EXPECT_LT(error, 0.05);
+  gaussian.nu_mode = NuMode::kEstimated;
+  EXPECT_NE(validateParameters(gaussian).find("estimated"), std::string::npos);
 }
 
 // Two scans 20 m apart overlap on part of the scene only: 9 % of the source lies within 3 sigma

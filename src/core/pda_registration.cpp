@@ -269,7 +269,7 @@ RegistrationResult PdaRegistration::alignUnchecked(const PointList& source_input
     }
     const Eigen::Isometry3d T_run_start = state.T;
     RegistrationParameters run_parameters = p;  // a few numbers: copied once a run
-    run_parameters.nu_mode = nuModeOfRun(p.nu_mode, stage == Stage::kRefine);
+    run_parameters.nu_mode = nuModeOfRun(p, stage == Stage::kRefine);
     if (!runEm(active, *normal_map, run_parameters, &workspace_, &state, &em_settled,
                &result.em_iterations)) {
       result.reason = "M-step failed: the weighted correspondences do not constrain the pose";

@@ -19,9 +19,8 @@ std::string validateParameters(const RegistrationParameters& p) {
     error << "min_radius must be > 0 and finite (got " << p.min_radius << ")";
   else if (std::isnan(p.nu) || !(p.nu > 0.0))
     error << "nu must be > 0 or inf (got " << p.nu << ")";
-  else if (p.nu_mode != NuMode::kFixed && !std::isfinite(p.nu))
-    error << "nu_mode " << toString(p.nu_mode) << " needs a finite starting nu (got " << p.nu
-          << ")";
+  else if (p.nu_mode == NuMode::kEstimated && !std::isfinite(p.nu))
+    error << "nu_mode estimated needs a finite starting nu (got " << p.nu << ")";
   else if (p.sigma_mode == SigmaMode::kFixed && !finitePositive(p.fixed_sigma))
     error << "fixed_sigma must be > 0 and finite (got " << p.fixed_sigma << ")";
   else if (p.max_em_iterations < 1 || p.max_em_iterations > 1000)
@@ -89,9 +88,10 @@ const char* toString(NuMode mode) {
   return kNames[static_cast<int>(mode)];
 }
 
-NuMode nuModeOfRun(NuMode mode, bool refine_stage) {
-  if (mode != NuMode::kRefine) return mode;
-  return refine_stage ? NuMode::kEstimated : NuMode::kFixed;
+NuMode nuModeOfRun(const RegistrationParameters& p, bool refine_stage) {
+  if (p.nu_mode != NuMode::kRefine) return p.nu_mode;
+  // nu = inf asks for the paper's Gaussian (`gaussian: true`): the default mode keeps it.
+  return refine_stage && std::isfinite(p.nu) ? NuMode::kEstimated : NuMode::kFixed;
 }
 
 bool parseSolver(const std::string& text, MStepSolver* solver) {
