@@ -49,6 +49,8 @@ void AlignmentStatus::fill(diagnostic_updater::DiagnosticStatusWrapper& status,
   const RegistrationResult& r = s.last_result;
   status.add("converged", s.have_result && r.converged);
   status.add("sigma [m]", r.sigma);
+  // The Student-t's nu at the end: `nu` itself, or what the refine runs estimated (nu_mode).
+  status.add("nu", r.nu);
   // What ~pose's covariance expects (1 sigma): how far off the estimate probably is.
   status.add("expected error [cm]", 100.0 * s.expected_error.translation);
   status.add("expected error [deg]", s.expected_error.rotation * 180.0 / M_PI);

@@ -31,6 +31,11 @@ TEST(NodeletOwnEdge, SeedsFromInitialTransformThenFromItsOwnEstimate) {
   ASSERT_TRUE(harness.waitForAcceptedToMatchTransforms(10.0, &detail)) << detail;
   EXPECT_EQ(harness.diagnosticValue("warm start"),
             "not applied: the node's own tf edge is part of the seed");
+  // nu_mode refine (the default): the diagnostics show the nu the refine runs settled on, within
+  // the ECM update's [1, 60] and away from the parameter (5; room_scan's residuals: about 2.6).
+  const double nu = std::stod(harness.diagnosticValue("nu"));
+  EXPECT_GE(nu, 1.0);
+  EXPECT_LT(nu, 4.5);
   // The nodelet logs its seed source whenever it changes.
   EXPECT_TRUE(harness.waitForLogContaining("seeding from ~initial_transform", 5.0))
       << harness.logText();
