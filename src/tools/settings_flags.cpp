@@ -58,7 +58,8 @@ std::string settingsFlagsHelp() {
        << p.radius << ")\n"
        << "  --min-radius R          later runs shrink the radius to 6 sigma, not below R [m] ("
        << p.min_radius << ")\n"
-       << "  --nu V                  Student-t degrees of freedom, 'inf' = Gaussian (" << p.nu
+       << "  --nu V                  Student-t degrees of freedom, 'inf' = Gaussian; the start\n"
+       << "                          of the refine runs' estimate under --nu-mode refine (" << p.nu
        << ")\n"
        << "  --runs N                max candidate-set recomputations, 1 = single run ("
        << p.max_runs << ")\n"
