@@ -20,9 +20,11 @@
 namespace pda_registration {
 
 /// Weights for one source point. squared_residuals[i] = |y_i - (R x + T)|^2_M in length units.
-/// Writes posterior[i] = P(a_i) (sums to 1) and weight[i] = P(a_i) * E[w_i].
+/// Writes posterior[i] = P(a_i) (sums to 1) and weight[i] = P(a_i) * E[w_i]; and, if
+/// log_precision is given and nu finite, log_precision[i] = log E[w_i] (for nu's statistic).
 void computeCandidateWeights(const double* squared_residuals, size_t count, double nu,
-                             double sigma_squared, double* posterior, double* weight);
+                             double sigma_squared, double* posterior, double* weight,
+                             double* log_precision = nullptr);
 
 /// The E-step's output, reduced to one weighted correspondence per source point with candidates.
 struct WeightedCorrespondences {
