@@ -247,7 +247,7 @@ int restAt(const std::vector<double>& xs, const std::vector<double>& ys) {
 TEST(RunRest, ACycleBetweenTwoPosesIsAtRest) {
   std::vector<double> xs, ys;
   for (int i = 0; i < 20; ++i) {
-    xs.push_back(i % 2 ? 0.0005 : 0.0);  // 0.5 mm there and back, as room_scan on a 0.5 m map
+    xs.push_back(i % 2 ? 0.0 : 0.0005);  // 0.5 mm there and back, as room_scan on a 0.5 m map
     ys.push_back(0.0);
   }
   EXPECT_EQ(restAt(xs, ys), pda_registration::RunRest::kWindow);
