@@ -138,6 +138,9 @@ void computeWeightedCorrespondences(const PointList& source, const CandidateSets
   along.resize(n);
   log_u_minus_u.resize(n);
   const bool nu_statistic = buffers->nu_statistic && !std::isinf(nu);
+  const bool second_moments = buffers->second_moments;
+  std::vector<Eigen::Matrix3d>& moments = buffers->moments;
+  if (second_moments) moments.resize(n);
 
 #pragma omp parallel num_threads(std::max(threads, 1))
   {
@@ -176,6 +179,17 @@ void computeWeightedCorrespondences(const PointList& source, const CandidateSets
         spread_across += rho[i] * a;
         spread_along += rho[i] * b;
       }
+      if (second_moments) {
+        // sum_i P(a_i) u_i^2 r_i r_i^T, u_i = rho_i / P(a_i): the association's and the
+        // t-weight's share of the observed information (pose_covariance.hpp).
+        Eigen::Matrix3d moment = Eigen::Matrix3d::Zero();
+        for (size_t i = 0; i < count; ++i) {
+          if (!(posterior[i] > 0.0)) continue;
+          const Point r = y[i] - x;
+          moment.noalias() += (rho[i] * rho[i] / posterior[i]) * r * r.transpose();
+        }
+        moments[j] = moment;
+      }
       means[j] = mean;
       weights[j] = w;
       across[j] = spread_across;
@@ -194,6 +208,7 @@ void computeWeightedCorrespondences(const PointList& source, const CandidateSets
   out.inverse_kappa.clear();
   out.spread_across.clear();
   out.spread_along.clear();
+  out.second_moment.clear();
   double precision_sum = 0.0;
   for (size_t j = 0; j < n; ++j) {
     if (!(weights[j] > 0.0)) continue;
@@ -206,6 +221,7 @@ void computeWeightedCorrespondences(const PointList& source, const CandidateSets
     out.inverse_kappa.push_back(shapes.inverseKappaAt(j));
     out.spread_across.push_back(across[j]);
     out.spread_along.push_back(along[j]);
+    if (second_moments) out.second_moment.push_back(moments[j]);
   }
   out.mean_log_u_minus_u = out.size() == 0 ? 0.0 : precision_sum / static_cast<double>(out.size());
 }

@@ -80,8 +80,10 @@ void fillFinalStatistics(const PointList& source, const TargetIndex& index,
   makeNoiseShapes(workspace->normals, workspace->spread, state.sigma_squared, p,
                   &workspace->shapes);
   const NoiseShapes& shapes = workspace->shapes;
+  workspace->e_step.second_moments = true;  // for the covariance's observed information
   computeWeightedCorrespondences(source, candidates, shapes, state.T, state.nu, state.sigma_squared,
                                  p.threads, &workspace->e_step, &workspace->correspondences);
+  workspace->e_step.second_moments = false;
   const WeightedCorrespondences& correspondences = workspace->correspondences;
   const auto covariance_start = std::chrono::steady_clock::now();
   PoseCovarianceTerms terms;

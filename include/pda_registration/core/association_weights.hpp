@@ -41,6 +41,9 @@ struct WeightedCorrespondences {
   /// mean_j sum_i P(a_i) (log u_i - u_i), u_i = E[w | a_i]: the E-step's statistic for nu's
   /// update (degrees_of_freedom.hpp); only when the buffers ask for it, 0 for the Gaussian.
   double mean_log_u_minus_u = 0.0;
+  /// sum_i P(a_i) u_i^2 (y_i - T x)(y_i - T x)^T per correspondence, only when the buffers ask
+  /// for it (the covariance's observed information, pose_covariance.hpp); empty otherwise.
+  std::vector<Eigen::Matrix3d> second_moment;
 
   size_t size() const { return source.size(); }
 };
@@ -50,6 +53,8 @@ struct EStepBuffers {
   PointList means;
   std::vector<double> weights, across, along, log_u_minus_u;
   bool nu_statistic = false;  ///< also compute mean_log_u_minus_u (a log per candidate)
+  bool second_moments = false;  ///< also fill WeightedCorrespondences::second_moment
+  std::vector<Eigen::Matrix3d> moments;
 };
 
 /// Runs the E-step at the current estimate for every source point with candidates, each in its

@@ -2,10 +2,13 @@
 // Covariance of the estimate, in the convention of geometry_msgs/PoseWithCovariance: a left
 // perturbation (dx, dy, dz, droll, dpitch, dyaw) of T in the target frame (pose_jacobian.hpp).
 //
-// It is the sum of two terms:
-//  - model: the inverse Hessian of the EM objective, sigma^2 (sum_j W_j J_j^T M_j^-1 J_j)^-1 with
-//    M_j the point's noise shape. It is right only if every residual were independent noise;
-//    alone it was 3-80x smaller than the error actually made.
+// It is the upper bound of two terms:
+//  - model: sigma^2 times the inverse of the observed information of the EM objective (Louis
+//    1982): sum_j W_j J_j^T M_j^-1 J_j (M_j the point's noise shape) less the posterior spread of
+//    each point's candidates' pulls, which the unknown association and t-weight leave open. The
+//    complete-data matrix alone treats every association as known: on a same-sensor lattice, whose
+//    samples are as far apart as the noise, it was 3x too confident. It is right only if every
+//    residual were independent noise.
 //  - structure: a spatial HAC sandwich H^-1 S(L) H^-1 (heteroskedasticity and autocorrelation
 //    consistent, as in spatial econometrics), S(L) = sum g_i g_j^T over the pairs of points
 //    closer than about L, g_i the gradient of point i's term of the objective. Neighbouring
@@ -13,10 +16,11 @@
 //    are not independent constraints; S(L) grows with L as far as the scores stay correlated.
 //    L is not a constant: the term is the upper bound of S(L) over a doubling ladder of L, from
 //    the overlap's diagonal / 128 to its size, summed per grid cell (27 neighbouring cells).
-//    H here is the Student-t objective's exact Hessian (with the t-weights' derivative), as in
-//    an M-estimator's sandwich. What the map's parts disagree on as wholes (a warp over the
-//    whole map, a map that covers part of the scan) comes from a delete-one-octant jackknife,
-//    and the structure term is the upper bound of the two.
+//    H^-1 here is the model term's inverse information, as in an M-estimator's sandwich. What
+//    the map's parts disagree on as wholes (a warp over the whole map, a map that covers part of
+//    the scan) comes from a delete-one-octant jackknife, and the structure term is the upper
+//    bound of the two.
+// The structure term holds the white noise too, so the two are bounded, not summed.
 // See docs/benchmark.md (Covariance) for what it is calibrated against (pda_covariance_check).
 
 #include <Eigen/Geometry>
@@ -33,8 +37,10 @@ struct PoseCovarianceTerms {
   double cell_edge = 0.0;  ///< [length] their edge: about how far the residuals are correlated
 };
 
-/// `nu` is the E-step's (+inf: Gaussian). Returns false (and a zero matrix) when the Hessian is
-/// singular or there is nothing to use.
+/// `nu` is the E-step's (+inf: Gaussian). The correspondences' second moments (the E-step's
+/// EStepBuffers::second_moments) give the observed information; without them the complete-data
+/// one is used. Returns false (and a zero matrix) when the Hessian is singular or there is
+/// nothing to use.
 bool computePoseCovariance(const WeightedCorrespondences& correspondences,
                            const Eigen::Isometry3d& T_target_source, double sigma_squared,
                            double nu, Eigen::Matrix<double, 6, 6>* covariance,
