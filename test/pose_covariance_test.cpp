@@ -123,8 +123,8 @@ Spread monteCarlo(double noise, double patch_offset, int draws) {
 
 TEST(PoseCovariance, IndependentNoiseGivesTheSpreadOfTheEstimate) {
   const Spread s = monteCarlo(0.01, 0.0, 60);
-  // The noise term alone is right here; the total errs on the safe side (noise term plus the
-  // larger of two structure estimates that each hold the noise again: about 1.6x).
+  // The noise term alone is right here; the total errs on the safe side (the upper bound of the
+  // noise term and of structure estimates that each hold the noise again).
   EXPECT_NEAR(s.model_t / s.error_rms_t, 1.0, 0.25);
   EXPECT_GT(s.sigma_t / s.error_rms_t, 0.8);
   EXPECT_LT(s.sigma_t / s.error_rms_t, 1.8);

@@ -18,9 +18,13 @@ namespace {
 // The finest grid of the score correlogram: the overlap's diagonal / 128 (a few centimetres on a
 // room, decimetres on a car park; diagonal / 256 gave the same covariances at twice the cost).
 // Each coarser level doubles the cell edge, up to kCoarsestEdge x the overlap's radius, where a
-// cell's neighbourhood (3 cells wide) spans most of the overlap.
+// cell's neighbourhood (3 cells wide) spans 3/8 of the overlap's diagonal. One level more (half
+// the radius, 3/4 of the diagonal) paired nearly every cell with every other: the scores sum to
+// zero at the optimum, so that level read the far pairs' cancelling as correlation (simulated
+// offices: median error / sigma 0.72 in translation with it, 0.92 without; eight unseen office
+// scenes 0.74 / 0.96). What the map's parts disagree on as wholes is the jackknife's.
 constexpr int kFinestDivisions = 128;
-constexpr double kCoarsestEdge = 0.5;
+constexpr double kCoarsestEdge = 0.25;
 
 // Scores summed per grid cell. Cells keep their coordinates beside the key for coarsening and
 // for finding their neighbours (the grid spans at most kFinestDivisions cells per axis, so keys
