@@ -81,7 +81,8 @@ void computeCandidateWeights(const double* squared_residuals, size_t count, doub
   // log((nu + m_i) / (nu + m_best)) = log1p((m_i - m_best) / (nu + m_best)): exact for large nu
   // too.
   const double inverse_best = 1.0 / (nu + best);
-  const double log_best_precision = by_logarithm ? std::log((nu + kDimension) * inverse_best) : 0.0;
+  const double log_best_precision =
+      log_precision && by_logarithm ? std::log((nu + kDimension) * inverse_best) : 0.0;
   // Candidates whose density is below 1e-16 of the best's add nothing a double can hold to the
   // normalisation: their posterior is 0, without a log or an exp.
   const double negligible_ratio =
