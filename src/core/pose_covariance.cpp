@@ -144,6 +144,16 @@ Matrix6d upperBound(const Matrix6d& a, const Matrix6d& b, double length) {
   return a + unscale.asDiagonal() * positive * unscale.asDiagonal();
 }
 
+// From increments about `pivot` to the same increments about `origin` (both in the target frame):
+// a rotation w about the pivot is that rotation about the origin plus a shift w x (origin - pivot).
+Matrix6d pivotToOrigin(const Eigen::Vector3d& pivot, const Eigen::Vector3d& origin) {
+  const Eigen::Vector3d lever = pivot - origin;
+  Matrix6d change = Matrix6d::Identity();
+  change.topRightCorner<3, 3>() << 0.0, -lever.z(), lever.y(), lever.z(), 0.0, -lever.x(),
+      -lever.y(), lever.x(), 0.0;
+  return change;
+}
+
 }  // namespace
 
 bool computePoseCovariance(const WeightedCorrespondences& correspondences,
@@ -162,6 +172,11 @@ bool computePoseCovariance(const WeightedCorrespondences& correspondences,
   }
   const double finest_edge = overlap.diagonal().norm() / kFinestDivisions;
   const Eigen::Vector3d centre = overlap.center();
+  // Every term is taken with rotations about the overlap's centre and expressed about the
+  // source origin (the message's convention) only at the end. About a far origin (a map
+  // accumulated over a long drive) rotation and translation mix, and the upper bounds below,
+  // taken with rotations weighed by the overlap's radius, would change with where that origin
+  // lies: the same alignment 1 km from it read 1.5x more cautious.
 
   // The Hessian of the EM objective and every point's score (the gradient of its term) at the
   // optimum, summed per finest cell and per octant.
@@ -174,8 +189,7 @@ bool computePoseCovariance(const WeightedCorrespondences& correspondences,
   CellScores cells;
   std::array<OctantSums, 8> octants;
   for (size_t i = 0; i < correspondences.size(); ++i) {
-    const PoseJacobian jacobian =
-        poseJacobian(T_target_source.linear() * correspondences.source[i]);
+    const PoseJacobian jacobian = poseJacobian(moved[i] - centre);
     const Eigen::Matrix3d shape =
         shapeInverse(correspondences.normal[i], correspondences.inverse_kappa[i]);
     const Eigen::Vector3d residual = correspondences.target_mean[i] - moved[i];
@@ -207,7 +221,10 @@ bool computePoseCovariance(const WeightedCorrespondences& correspondences,
       robust_hessian.noalias() -=
           2.0 * weight * t_weight / ((nu + 3.0) * sigma_squared) * pull * pull.transpose();
     }
-    if (finest_edge > 0.0) addScore(voxelCellOf(moved[i], 1.0 / finest_edge), score, &cells);
+    // The grid hangs on the overlap's corner: cells 0-128 per axis wherever the map lies.
+    if (finest_edge > 0.0) {
+      addScore(voxelCellOf(moved[i] - overlap.min(), 1.0 / finest_edge), score, &cells);
+    }
     OctantSums& octant = octants[octantOf(moved[i], centre)];
     octant.hessian.noalias() += point_hessian;
     octant.score += score;
@@ -255,11 +272,12 @@ bool computePoseCovariance(const WeightedCorrespondences& correspondences,
   // The two terms overlap: the structure term also holds the white noise the model term counts.
   // Their upper bound, not their sum (which counted that noise twice: 1.2-1.6x too cautious
   // wherever the residuals are independent, once the bread holds the observed information).
-  *covariance = upperBound(model, structure, radius);
+  const Matrix6d to_origin = pivotToOrigin(centre, T_target_source.translation());
+  *covariance = to_origin * upperBound(model, structure, radius) * to_origin.transpose();
   *covariance = 0.5 * (*covariance + covariance->transpose()).eval();  // exact symmetry
   if (terms) {
-    terms->model = model;
-    terms->structure = structure;
+    terms->model = to_origin * model * to_origin.transpose();
+    terms->structure = to_origin * structure * to_origin.transpose();
     terms->cells = cell_count;
     terms->cell_edge = cell_edge;
   }
