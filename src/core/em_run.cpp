@@ -41,21 +41,26 @@ bool runMStep(const WeightedCorrespondences& correspondences, const Registration
 }  // namespace
 
 void lookupNormals(const SurfaceNormalMap& map, const PointList& source, const Eigen::Isometry3d& T,
-                   int threads, PointList* normals) {
+                   int threads, PointList* normals, const CandidateSets* only_with_candidates) {
   normals->resize(source.size());
 #pragma omp parallel for schedule(static) num_threads(std::max(threads, 1))
   for (long long j = 0; j < static_cast<long long>(source.size()); ++j) {
-    (*normals)[j] = map.normalAt(T * source[j]);
+    const bool wanted =
+        !only_with_candidates || (static_cast<size_t>(j) < only_with_candidates->sourceCount() &&
+                                  only_with_candidates->candidateCount(j) > 0);
+    (*normals)[j] = wanted ? map.normalAt(T * source[j]) : Point::Zero();
   }
 }
 
 double computeShapeInputs(const SurfaceNormalMap& normal_map, const PointList& source,
                           const CandidateSets& candidates, const Eigen::Isometry3d& T,
                           const RegistrationParameters& p, PointList* normals,
-                          std::vector<double>* spread) {
+                          std::vector<double>* spread, bool every_point) {
   normals->clear();
   spread->clear();
-  if (p.surface_anisotropy > 1.0) lookupNormals(normal_map, source, T, p.threads, normals);
+  if (p.surface_anisotropy > 1.0) {
+    lookupNormals(normal_map, source, T, p.threads, normals, every_point ? nullptr : &candidates);
+  }
   if (!usesSamplingModel(p)) return 0.0;
   *spread = candidateSpread(candidates, p.threads);
   return targetThickness(candidates, *normals);

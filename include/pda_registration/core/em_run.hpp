@@ -38,17 +38,21 @@ bool runEm(const PointList& source, const SurfaceNormalMap& normal_map,
            const RegistrationParameters& p, RegistrationWorkspace* workspace, EmState* state,
            bool* settled, int* em_iterations);
 
-/// The target surface normal at every moved source point (zero where unknown).
+/// The target surface normal at every moved source point (zero where unknown). With
+/// `only_with_candidates`, only at the points that have candidates there (zero elsewhere): a
+/// run's E-step reads no other, and on a partial overlap most points have none.
 void lookupNormals(const SurfaceNormalMap& map, const PointList& source, const Eigen::Isometry3d& T,
-                   int threads, PointList* normals);
+                   int threads, PointList* normals,
+                   const CandidateSets* only_with_candidates = nullptr);
 
 /// What the noise shapes of one run are made from: the target normals at the moved source points
 /// (not needed by the isotropic model: left empty) and the candidates' sampling spread (sampling
 /// model only). Returns the target's thickness, sigma^2's floor from the target's own noise
-/// (sampling model; 0 otherwise).
+/// (sampling model; 0 otherwise). The normals are looked up at the points with candidates only,
+/// unless `every_point` (the final statistics' degeneracy check reads them all).
 double computeShapeInputs(const SurfaceNormalMap& normal_map, const PointList& source,
                           const CandidateSets& candidates, const Eigen::Isometry3d& T,
                           const RegistrationParameters& p, PointList* normals,
-                          std::vector<double>* spread);
+                          std::vector<double>* spread, bool every_point = false);
 
 }  // namespace pda_registration
