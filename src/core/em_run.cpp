@@ -73,8 +73,10 @@ bool runEm(const PointList& source, const SurfaceNormalMap& normal_map,
            bool* settled, int* em_iterations) {
   const bool estimate_sigma = p.sigma_mode == SigmaMode::kEstimated;
   const CandidateSets& candidates = workspace->candidates;
-  const double thickness = computeShapeInputs(normal_map, source, candidates, state->T, p,
-                                              &workspace->normals, &workspace->spread);
+  // The normals go straight into the shapes, which keep them for every iteration of the run.
+  PointList& normals = workspace->shapes.normal;
+  const double thickness =
+      computeShapeInputs(normal_map, source, candidates, state->T, p, &normals, &workspace->spread);
   // A floor keeps the t-weights defined when the clouds match exactly (sigma -> 0); the sampling
   // model's is the target's own thickness about its surface.
   const double sigma_squared_floor = std::max(std::pow(1e-6 * p.radius, 2), thickness);
@@ -85,8 +87,7 @@ bool runEm(const PointList& source, const SurfaceNormalMap& normal_map,
   workspace->e_step.nu_statistic = p.nu_mode == NuMode::kEstimated;
   *settled = false;
   for (int iteration = 0; iteration < p.max_em_iterations; ++iteration) {
-    makeNoiseShapes(workspace->normals, workspace->spread, state->sigma_squared, p,
-                    &workspace->shapes);
+    makeNoiseShapes(normals, workspace->spread, state->sigma_squared, p, &workspace->shapes);
     computeWeightedCorrespondences(source, candidates, workspace->shapes, state->T, state->nu,
                                    state->sigma_squared, p.threads, &workspace->e_step,
                                    &workspace->correspondences);

@@ -54,11 +54,13 @@ void makeNoiseShapes(const PointList& normals, const std::vector<double>& spread
     shapes.inverse_kappa.clear();
     return;
   }
-  shapes.normal = normals;
-  shapes.inverse_kappa.assign(normals.size(), 1.0);
+  // A run's EM loop keeps its normals in the shapes themselves: no copy per iteration.
+  if (&normals != &shapes.normal) shapes.normal = normals;
+  shapes.inverse_kappa.assign(shapes.normal.size(), 1.0);
   if (!usesSamplingModel(p)) {
-    for (size_t j = 0; j < normals.size(); ++j) {
-      if (normals[j].squaredNorm() > 0.0) shapes.inverse_kappa[j] = 1.0 / p.surface_anisotropy;
+    for (size_t j = 0; j < shapes.normal.size(); ++j) {
+      if (shapes.normal[j].squaredNorm() > 0.0)
+        shapes.inverse_kappa[j] = 1.0 / p.surface_anisotropy;
     }
     return;
   }
@@ -66,10 +68,10 @@ void makeNoiseShapes(const PointList& normals, const std::vector<double>& spread
   // Along the surface: the larger of the constant kappa's sigma^2 kappa and sigma^2 + s_j^2.
   // Without a normal: sigma^2 + s_j^2 in every direction.
   const double constant_inverse_kappa = 1.0 / p.surface_anisotropy;
-  for (size_t j = 0; j < normals.size() && j < spread.size(); ++j) {
+  for (size_t j = 0; j < shapes.normal.size() && j < spread.size(); ++j) {
     const double total = sigma_squared + p.sampling_scale * spread[j];
     const double sampling_inverse_kappa = total > 0.0 ? sigma_squared / total : 1.0;
-    shapes.inverse_kappa[j] = normals[j].squaredNorm() > 0.0
+    shapes.inverse_kappa[j] = shapes.normal[j].squaredNorm() > 0.0
                                   ? std::min(constant_inverse_kappa, sampling_inverse_kappa)
                                   : sampling_inverse_kappa;
   }

@@ -54,7 +54,8 @@ bool usesSamplingModel(const RegistrationParameters& parameters);
 
 /// The shapes for one E-step at the current sigma^2, into *shapes (reusing its memory: EM calls
 /// this every iteration). `normals` (one per source point) may be empty when the model is
-/// isotropic; `spread` (from candidateSpread) is only read by the sampling model.
+/// isotropic; `spread` (from candidateSpread) is only read by the sampling model. `normals` may
+/// be shapes->normal itself (a run's EM loop keeps them there, so they are not copied each time).
 void makeNoiseShapes(const PointList& normals, const std::vector<double>& spread,
                      double sigma_squared, const RegistrationParameters& parameters,
                      NoiseShapes* shapes);

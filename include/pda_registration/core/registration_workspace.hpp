@@ -17,7 +17,8 @@ struct RegistrationWorkspace {
   PointList coarse_source;  ///< every coarse_stride-th of them
   CandidateSearchBuffers search;
   CandidateSets candidates;
-  PointList normals;           ///< target normal at each moved source point (one run)
+  PointList normals;           ///< target normal at each moved source point (final statistics;
+                               ///< a run keeps its own in shapes.normal)
   std::vector<double> spread;  ///< candidates' sampling spread (one run)
   NoiseShapes shapes;
   EStepBuffers e_step;
