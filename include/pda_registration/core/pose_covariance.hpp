@@ -20,7 +20,9 @@
 //    the map's parts disagree on as wholes (a warp over the whole map, a map that covers part of
 //    the scan) comes from a delete-one-octant jackknife, and the structure term is the upper
 //    bound of the two.
-// The structure term holds the white noise too, so the two are bounded, not summed.
+// The structure term holds the white noise too, so the two are bounded, not summed. The bounds
+// are taken with rotations about the overlap's centre, so they do not depend on where the source
+// origin lies; the result is expressed about the source origin, as the message wants.
 // See docs/benchmark.md (Covariance) for what it is calibrated against (pda_covariance_check).
 
 #include <Eigen/Geometry>
