@@ -144,13 +144,18 @@ Matrix6d upperBound(const Matrix6d& a, const Matrix6d& b, double length) {
   return a + unscale.asDiagonal() * positive * unscale.asDiagonal();
 }
 
+// [v]x: the matrix of the cross product v x (.).
+Eigen::Matrix3d crossMatrix(const Eigen::Vector3d& v) {
+  Eigen::Matrix3d m;
+  m << 0.0, -v.z(), v.y(), v.z(), 0.0, -v.x(), -v.y(), v.x(), 0.0;
+  return m;
+}
+
 // From increments about `pivot` to the same increments about `origin` (both in the target frame):
 // a rotation w about the pivot is that rotation about the origin plus a shift w x (origin - pivot).
 Matrix6d pivotToOrigin(const Eigen::Vector3d& pivot, const Eigen::Vector3d& origin) {
-  const Eigen::Vector3d lever = pivot - origin;
   Matrix6d change = Matrix6d::Identity();
-  change.topRightCorner<3, 3>() << 0.0, -lever.z(), lever.y(), lever.z(), 0.0, -lever.x(),
-      -lever.y(), lever.x(), 0.0;
+  change.topRightCorner<3, 3>() = crossMatrix(pivot - origin);
   return change;
 }
 
@@ -294,12 +299,9 @@ Eigen::Matrix<double, 6, 6> invertedPoseCovariance(const Eigen::Isometry3d& T,
   // T^-1 = (R^T, -R^T t). With R <- exp(w) R, t <- t + v on T, the inverse moves by
   // w' = -R^T w and v' = -R^T v - R^T [t]x w (first order).
   const Eigen::Matrix3d Rt = T.linear().transpose();
-  const Eigen::Vector3d t = T.translation();
-  Eigen::Matrix3d t_cross;
-  t_cross << 0.0, -t.z(), t.y(), t.z(), 0.0, -t.x(), -t.y(), t.x(), 0.0;
   Matrix6d jacobian = Matrix6d::Zero();
   jacobian.topLeftCorner<3, 3>() = -Rt;
-  jacobian.topRightCorner<3, 3>() = -Rt * t_cross;
+  jacobian.topRightCorner<3, 3>() = -Rt * crossMatrix(T.translation());
   jacobian.bottomRightCorner<3, 3>() = -Rt;
   return jacobian * covariance * jacobian.transpose();
 }
