@@ -37,6 +37,7 @@ struct PoseCovarianceTerms {
   Eigen::Matrix<double, 6, 6> structure = Eigen::Matrix<double, 6, 6>::Zero();
   size_t cells = 0;        ///< occupied cells of the ladder's largest level (0: no structure term)
   double cell_edge = 0.0;  ///< [length] their edge: about how far the residuals are correlated
+  size_t disagreeing_cuts = 0;  ///< halves of the overlap that disagreed beyond the rest (0-3)
 };
 
 /// `nu` is the E-step's (+inf: Gaussian). The correspondences' second moments (the E-step's
