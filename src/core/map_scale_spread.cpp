@@ -7,8 +7,9 @@ namespace {
 
 // A cut along an axis the overlap is thin in (a room's height, a scan's vertical) separates
 // different kinds of surfaces (floor from ceiling, ground from treetops), not two samples of one
-// map: their disagreement is about the surfaces, and it cancels in the whole (simulated offices:
-// median error / sigma 0.42-0.47 in translation with the vertical cut, 0.5-0.9 without).
+// map: their disagreement is about the surfaces and cancels in the whole. Cut there too, eight
+// simulated offices' pooled error / sigma went 1.13 / 0.78 -> 0.79 / 0.67 (too cautious) and the
+// 16 scan pairs in range 9 -> 7.
 constexpr double kLongAxisShare = 0.5;
 // A half with fewer points than this share is not a sample of the map.
 constexpr double kMinimumHalfShare = 0.1;

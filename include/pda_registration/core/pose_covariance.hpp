@@ -20,6 +20,10 @@
 //    the map's parts disagree on as wholes (a warp over the whole map, a map that covers part of
 //    the scan) comes from a delete-one-octant jackknife, and the structure term is the upper
 //    bound of the two.
+//  - cuts: the overlap cut in two halves along each of its long axes (map_scale_spread.hpp). A
+//    cut whose halves disagree beyond the bound of the terms above (a chi-square test at 95 %)
+//    is taken into the bound: a warp or a bend of the whole map, which no neighbourhood of the
+//    correlogram reaches and an eighth left out barely moves.
 // The structure term holds the white noise too, so the two are bounded, not summed. The bounds
 // are taken with rotations about the overlap's centre, so they do not depend on where the source
 // origin lies; the result is expressed about the source origin, as the message wants.
