@@ -1,15 +1,16 @@
 // The map-scale terms of the pose covariance (map_scale_spread.hpp) on a linearised problem whose
 // answer is known: a closed room's six surfaces, residuals along their normals.
+#include "pda_registration/core/map_scale_spread.hpp"
+
 #include <gtest/gtest.h>
 
-#include <cmath>
 #include <Eigen/Eigenvalues>
+#include <cmath>
 #include <cstdio>
 #include <limits>
 #include <random>
 #include <vector>
 
-#include "pda_registration/core/map_scale_spread.hpp"
 #include "pda_registration/core/noise_model.hpp"
 #include "pda_registration/core/pose_covariance.hpp"
 
@@ -29,9 +30,19 @@ Room closedRoom(size_t per_surface, std::mt19937_64* random) {
     for (size_t i = 0; i < per_surface; ++i) {
       const double a = 6.0 * u(*random), b = 6.0 * u(*random), h = 3.0 * u(*random);
       const double side = surface % 2 == 0 ? 0.0 : 1.0;
-      if (surface < 2) room.points.emplace_back(a, b, 3.0 * side), room.normals.push_back(Point::UnitZ());
-      else if (surface < 4) room.points.emplace_back(a, 6.0 * side, h), room.normals.push_back(Point::UnitY());
-      else room.points.emplace_back(6.0 * side, b, h), room.normals.push_back(Point::UnitX());
+      Point point, normal;
+      if (surface < 2) {
+        point = Point(a, b, 3.0 * side);
+        normal = Point::UnitZ();
+      } else if (surface < 4) {
+        point = Point(a, 6.0 * side, h);
+        normal = Point::UnitY();
+      } else {
+        point = Point(6.0 * side, b, h);
+        normal = Point::UnitX();
+      }
+      room.points.push_back(point);
+      room.normals.push_back(normal);
     }
   }
   return room;
@@ -63,8 +74,8 @@ OctantPartition octantsAtOptimum(const Room& room, const std::vector<double>& al
 }
 
 TEST(MapScaleSpread, IndependentHalvesGiveTheCovarianceOfTheWholeEstimate) {
-  // The halves of a room hold different surfaces (one x wall each): the naive (d_low - d_high)^2 / 4
-  // of equal halves would not do. Averaged over draws, each cut's matrix is the spread of the
+  // The halves of a room hold different surfaces (one x wall each): the naive (d_low - d_high)^2 /
+  // 4 of equal halves would not do. Averaged over draws, each cut's matrix is the spread of the
   // whole estimate.
   std::mt19937_64 random(5);
   const Room room = closedRoom(500, &random);
@@ -85,8 +96,8 @@ TEST(MapScaleSpread, IndependentHalvesGiveTheCovarianceOfTheWholeEstimate) {
     for (size_t c = 0; c < 3; ++c) mean_cuts[c] += cuts[c] / draws;
   }
   for (size_t c = 0; c < 3; ++c) {
-    const double translation = mean_cuts[c].topLeftCorner<3, 3>().trace() /
-                               empirical.topLeftCorner<3, 3>().trace();
+    const double translation =
+        mean_cuts[c].topLeftCorner<3, 3>().trace() / empirical.topLeftCorner<3, 3>().trace();
     const double rotation = mean_cuts[c].bottomRightCorner<3, 3>().trace() /
                             empirical.bottomRightCorner<3, 3>().trace();
     EXPECT_NEAR(translation, 1.0, 0.2) << "cut " << c;

@@ -5,11 +5,10 @@
 // the whole map, a dense map that covers only part of the scan). Everything here is linearised
 // at the optimum with rotations about the overlap's centre, from per-octant sums.
 
+#include <Eigen/Geometry>
 #include <array>
 #include <cstddef>
 #include <vector>
-
-#include <Eigen/Geometry>
 
 #include "pda_registration/core/point_list.hpp"
 #include "pda_registration/core/pose_jacobian.hpp"
