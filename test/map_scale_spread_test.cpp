@@ -91,7 +91,7 @@ TEST(MapScaleSpread, IndependentHalvesGiveTheCovarianceOfTheWholeEstimate) {
     const OctantPartition octants = octantsAtOptimum(room, along, &hessian, &step);
     empirical += step * step.transpose() / draws;
     const std::vector<Matrix6d> cuts =
-        halfSplitDisagreements(octants, hessian, Eigen::Vector3d(6.0, 6.0, 3.0));
+        halfSplitDisagreements(octants, hessian.inverse(), Eigen::Vector3d(6.0, 6.0, 3.0));
     ASSERT_EQ(cuts.size(), 3u);  // the height is half the room's width: every axis is long
     for (size_t c = 0; c < 3; ++c) mean_cuts[c] += cuts[c] / draws;
   }
@@ -113,12 +113,12 @@ TEST(MapScaleSpread, ThinAxesAndSmallHalvesAreNotCut) {
   Vector6d step;
   OctantPartition octants = octantsAtOptimum(room, along, &hessian, &step);
   // A room 40 m long and 3 m high: only its length is cut.
-  EXPECT_EQ(halfSplitDisagreements(octants, hessian, Eigen::Vector3d(40.0, 6.0, 3.0)).size(), 1u);
+  EXPECT_EQ(halfSplitDisagreements(octants, hessian.inverse(), Eigen::Vector3d(40.0, 6.0, 3.0)).size(), 1u);
   // A half with under a tenth of the points is no sample of the map.
   for (int o = 0; o < 8; ++o) {
     if (o & 1) octants[o].points = 1;
   }
-  EXPECT_EQ(halfSplitDisagreements(octants, hessian, Eigen::Vector3d(40.0, 6.0, 3.0)).size(), 0u);
+  EXPECT_EQ(halfSplitDisagreements(octants, hessian.inverse(), Eigen::Vector3d(40.0, 6.0, 3.0)).size(), 0u);
 }
 
 // As the E-step hands them over: one correspondence per point, its target mean moved along the

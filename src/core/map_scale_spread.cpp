@@ -63,11 +63,9 @@ bool octantJackknife(const OctantPartition& octants, const Matrix6d& hessian, si
 // direction poorly (half a scan sees walls facing mostly one way) disagrees widely there, and
 // H_low D discounts it. The product is taken symmetrised.
 std::vector<Matrix6d> halfSplitDisagreements(const OctantPartition& octants,
-                                             const Matrix6d& hessian,
+                                             const Matrix6d& hessian_inverse,
                                              const Eigen::Vector3d& extent) {
   std::vector<Matrix6d> out;
-  Matrix6d hessian_inverse;
-  if (!invertPositiveDefinite(hessian, &hessian_inverse)) return out;
   size_t total_points = 0;
   for (const OctantSums& octant : octants) total_points += octant.points;
   for (int axis = 0; axis < 3; ++axis) {

@@ -232,7 +232,7 @@ bool computePoseCovariance(const WeightedCorrespondences& correspondences,
   // more cautious. Simulated RGB-D fragments warped by 1 %: error / sigma 3.5-3.9 -> 1.7.
   size_t cuts = 0;
   const Matrix6d before_cuts = bounded;
-  for (const Matrix6d& cut : halfSplitDisagreements(octants, hessian, overlap.sizes())) {
+  for (const Matrix6d& cut : halfSplitDisagreements(octants, hessian_inverse, overlap.sizes())) {
     if (largestExcess(cut, before_cuts) > kHalvesSignificance) {
       bounded = upperBound(bounded, cut, radius);
       ++cuts;

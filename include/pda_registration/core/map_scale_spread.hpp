@@ -34,9 +34,10 @@ bool octantJackknife(const OctantPartition& octants, const Matrix6d& hessian, si
 /// The overlap cut in two halves along each of its long axes (those along which it extends at
 /// least half as far as along its longest): per cut, the covariance the whole estimate would
 /// have if the two halves' disagreement were their independent errors. Cuts with a half under
-/// a tenth of the points, or one the half does not constrain, are left out.
+/// a tenth of the points, or one the half does not constrain, are left out. `hessian_inverse`:
+/// the inverse of the octants' Hessians summed (the caller has it already).
 std::vector<Matrix6d> halfSplitDisagreements(const OctantPartition& octants,
-                                             const Matrix6d& hessian,
+                                             const Matrix6d& hessian_inverse,
                                              const Eigen::Vector3d& extent);
 
 }  // namespace pda_registration
