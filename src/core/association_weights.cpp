@@ -56,67 +56,102 @@ double fastLog1p(double x) {
 }
 double fastExp(double x) { return std::exp(static_cast<float>(x)); }
 
+// The E-step's weights for one nu and sigma^2: what depends only on them is taken once per
+// E-step, not once per source point (the negligible-density cut costs an exp and a log).
+class CandidateWeighting {
+ public:
+  CandidateWeighting(double nu, double sigma_squared, bool log_precision)
+      : nu_(nu),
+        gaussian_(std::isinf(nu)),
+        inverse_sigma_squared_(1.0 / sigma_squared),
+        exponent_(0.5 * (nu + kDimension)),
+        power_(exponent_),
+        // An estimated nu is not an integer: pow would cost a log and an exp per candidate, and
+        // nu's statistic another log. One log of nu + m_i serves both (the E-step's most
+        // expensive part).
+        by_logarithm_(!gaussian_ && (log_precision || !power_.applies())),
+        // Candidates whose density is below 1e-16 of the best's add nothing a double can hold to
+        // the normalisation: their posterior is 0, without a log or an exp.
+        negligible_ratio_(by_logarithm_ ? std::exp(-std::log(kNegligibleDensity) / exponent_) - 1.0
+                                        : 0.0) {}
+
+  // Writes the candidates' unnormalised posteriors (relative to the best candidate's) and expected
+  // precisions, and returns the posteriors' sum. weight[i] * posterior[i] / sum is rho_i.
+  double unnormalised(const double* squared_residuals, size_t count, double* posterior,
+                      double* weight, double* log_precision) const {
+    if (count == 0) return 0.0;
+    const double nu = nu_;
+    // weight[] holds the Mahalanobis distances until the last loop. Divisions are taken once per
+    // candidate: the E-step runs over every candidate of every EM iteration.
+    double best = std::numeric_limits<double>::infinity();
+    for (size_t i = 0; i < count; ++i) {
+      weight[i] = squared_residuals[i] * inverse_sigma_squared_;
+      best = std::min(best, weight[i]);
+    }
+    // Densities are taken relative to the best candidate's, so tiny sigmas cannot underflow every
+    // candidate to zero: for the t (eq. 20) p_i / p_best = ((nu + m_best) / (nu + m_i))^((nu+d)/2).
+    // log((nu + m_i) / (nu + m_best)) = log1p((m_i - m_best) / (nu + m_best)): exact for large nu
+    // too.
+    const double inverse_best = 1.0 / (nu + best);
+    const double log_best_precision =
+        log_precision && by_logarithm_ ? std::log((nu + kDimension) * inverse_best) : 0.0;
+    double total = 0.0;
+    for (size_t i = 0; i < count; ++i) {
+      const double mahalanobis = weight[i];
+      if (gaussian_) {
+        posterior[i] = std::exp(-0.5 * (mahalanobis - best));  // eq. 19
+        weight[i] = 1.0;
+      } else if (by_logarithm_) {
+        const double excess = (mahalanobis - best) * inverse_best;
+        if (excess > negligible_ratio_) {
+          posterior[i] = 0.0;
+          weight[i] = 0.0;
+          if (log_precision) log_precision[i] = 0.0;
+          continue;
+        }
+        const double log_ratio = fastLog1p(excess);
+        posterior[i] = fastExp(-exponent_ * log_ratio);      // eq. 20
+        weight[i] = (nu + kDimension) / (nu + mahalanobis);  // expected precision, eq. 16
+        if (log_precision) log_precision[i] = log_best_precision - log_ratio;
+      } else {
+        const double inverse = 1.0 / (nu + mahalanobis);
+        posterior[i] = power_((nu + best) * inverse);  // eq. 20
+        weight[i] = (nu + kDimension) * inverse;       // expected precision, eq. 16
+      }
+      total += posterior[i];
+    }
+    return total;
+  }
+
+  void operator()(const double* squared_residuals, size_t count, double* posterior,
+                  double* weight, double* log_precision) const {
+    if (count == 0) return;
+    const double inverse_total =
+        1.0 / unnormalised(squared_residuals, count, posterior, weight, log_precision);
+    for (size_t i = 0; i < count; ++i) {
+      posterior[i] *= inverse_total;
+      weight[i] *= posterior[i];  // eqs. 15, 21
+    }
+  }
+
+
+ private:
+  double nu_;
+  bool gaussian_;
+  double inverse_sigma_squared_;
+  double exponent_;
+  IntegerPower power_;
+  bool by_logarithm_;
+  double negligible_ratio_;
+};
+
 }  // namespace
 
 void computeCandidateWeights(const double* squared_residuals, size_t count, double nu,
                              double sigma_squared, double* posterior, double* weight,
                              double* log_precision) {
-  if (count == 0) return;
-  const bool gaussian = std::isinf(nu);
-  // weight[] holds the Mahalanobis distances until the last loop. Divisions are taken once per
-  // candidate: the E-step runs over every candidate of every EM iteration.
-  const double inverse_sigma_squared = 1.0 / sigma_squared;
-  double best = std::numeric_limits<double>::infinity();
-  for (size_t i = 0; i < count; ++i) {
-    weight[i] = squared_residuals[i] * inverse_sigma_squared;
-    best = std::min(best, weight[i]);
-  }
-  // Densities are taken relative to the best candidate's, so tiny sigmas cannot underflow every
-  // candidate to zero: for the t (eq. 20) p_i / p_best = ((nu + m_best) / (nu + m_i))^((nu+d)/2).
-  const double exponent = 0.5 * (nu + kDimension);
-  const IntegerPower power(exponent);
-  // An estimated nu is not an integer: pow would cost a log and an exp per candidate, and nu's
-  // statistic another log. One log of nu + m_i serves both (the E-step's most expensive part).
-  const bool by_logarithm = !gaussian && (log_precision || !power.applies());
-  // log((nu + m_i) / (nu + m_best)) = log1p((m_i - m_best) / (nu + m_best)): exact for large nu
-  // too.
-  const double inverse_best = 1.0 / (nu + best);
-  const double log_best_precision =
-      log_precision && by_logarithm ? std::log((nu + kDimension) * inverse_best) : 0.0;
-  // Candidates whose density is below 1e-16 of the best's add nothing a double can hold to the
-  // normalisation: their posterior is 0, without a log or an exp.
-  const double negligible_ratio =
-      by_logarithm ? std::exp(-std::log(kNegligibleDensity) / exponent) - 1.0 : 0.0;
-  double total = 0.0;
-  for (size_t i = 0; i < count; ++i) {
-    const double mahalanobis = weight[i];
-    if (gaussian) {
-      posterior[i] = std::exp(-0.5 * (mahalanobis - best));  // eq. 19
-      weight[i] = 1.0;
-    } else if (by_logarithm) {
-      const double excess = (mahalanobis - best) * inverse_best;
-      if (excess > negligible_ratio) {
-        posterior[i] = 0.0;
-        weight[i] = 0.0;
-        if (log_precision) log_precision[i] = 0.0;
-        continue;
-      }
-      const double log_ratio = fastLog1p(excess);
-      posterior[i] = fastExp(-exponent * log_ratio);       // eq. 20
-      weight[i] = (nu + kDimension) / (nu + mahalanobis);  // expected precision, eq. 16
-      if (log_precision) log_precision[i] = log_best_precision - log_ratio;
-    } else {
-      const double inverse = 1.0 / (nu + mahalanobis);
-      posterior[i] = power((nu + best) * inverse);  // eq. 20
-      weight[i] = (nu + kDimension) * inverse;      // expected precision, eq. 16
-    }
-    total += posterior[i];
-  }
-  const double inverse_total = 1.0 / total;
-  for (size_t i = 0; i < count; ++i) {
-    posterior[i] *= inverse_total;
-    weight[i] *= posterior[i];  // eqs. 15, 21
-  }
+  const CandidateWeighting weighting(nu, sigma_squared, log_precision != nullptr);
+  weighting(squared_residuals, count, posterior, weight, log_precision);
 }
 
 void computeWeightedCorrespondences(const PointList& source, const CandidateSets& candidates,
@@ -139,33 +174,44 @@ void computeWeightedCorrespondences(const PointList& source, const CandidateSets
   along.resize(n);
   log_u_minus_u.resize(n);
   const bool nu_statistic = buffers->nu_statistic && !std::isinf(nu);
+  const CandidateWeighting weighting(nu, sigma_squared, nu_statistic);
   const bool second_moments = buffers->second_moments;
   std::vector<Eigen::Matrix3d>& moments = buffers->moments;
   if (second_moments) moments.resize(n);
 
 #pragma omp parallel num_threads(std::max(threads, 1))
   {
-    std::vector<double> residuals, posterior, rho, log_u;
+    // Per-candidate scratch: on the stack for the usual few candidates, else in vectors.
+    constexpr size_t kOnStack = 32;
+    double stack[4 * kOnStack];
+    std::vector<double> heap;
 #pragma omp for schedule(dynamic, 256)
     for (long long j = 0; j < static_cast<long long>(n); ++j) {
       const size_t count = candidates.candidateCount(j);
       if (count == 0) continue;
       const Point* y = &candidates.points[candidates.offsets[j]];
-      residuals.resize(count);
-      posterior.resize(count);
-      rho.resize(count);
-      log_u.resize(count);
+      double* residuals = stack;
+      if (count > kOnStack) {
+        heap.resize(4 * count);
+        residuals = heap.data();
+      }
+      double* posterior = residuals + count;
+      double* rho = posterior + count;
+      double* log_u = rho + count;
       const Point x = T_target_source * source[j];
       const Point normal = shapes.normalAt(j);
       const double inverse_kappa = shapes.inverseKappaAt(j);
       for (size_t i = 0; i < count; ++i) {
         residuals[i] = shapedSquaredNorm(y[i] - x, normal, inverse_kappa);
       }
-      computeCandidateWeights(residuals.data(), count, nu, sigma_squared, posterior.data(),
-                              rho.data(), nu_statistic ? log_u.data() : nullptr);
+      // The normalisation, rho_i = P(a_i) u_i and the sums in one pass.
+      const double inverse_total = 1.0 / weighting.unnormalised(residuals, count, posterior, rho,
+                                                                 nu_statistic ? log_u : nullptr);
       double w = 0.0, precision_term = 0.0;
       Point mean = Point::Zero();
       for (size_t i = 0; i < count; ++i) {
+        posterior[i] *= inverse_total;
+        rho[i] *= posterior[i];  // eqs. 15, 21
         w += rho[i];
         mean += rho[i] * y[i];
         // P(a_i) (log u_i - u_i), with P(a_i) u_i = rho_i.

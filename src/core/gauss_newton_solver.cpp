@@ -31,24 +31,33 @@ class NormalEquations {
     const double a = weight * inverse_kappa;
     a_sum_ += a;
     a_r_ += a * rotated;
-    a_rr_.noalias() += (a * rotated) * rotated.transpose();
+    const Eigen::Vector3d a_r = a * rotated;
+    for (int c = 0; c < 3; ++c) {
+      for (int r = 0; r <= c; ++r) a_rr_(r, c) += a_r(r) * rotated(c);
+    }
     gradient_.head<3>() += a * error;
     gradient_.tail<3>() += a * rotated.cross(error);
     if (!(normal.squaredNorm() > 0.0)) return;
     const double b = weight * (1.0 - inverse_kappa);
     Vector6d u;
     u << normal, rotated.cross(normal);
-    surface_.noalias() += (b * u) * u.transpose();
+    const Vector6d b_u = b * u;
+    for (int c = 0; c < 6; ++c) {
+      for (int r = 0; r <= c; ++r) surface_(r, c) += b_u(r) * u(c);
+    }
     gradient_ += (b * normal.dot(error)) * u;
   }
 
   Matrix6d hessian() const {
-    Matrix6d h = surface_;
+    // Only the upper triangles of the symmetric sums are gathered (their outer products are the
+    // loop's largest cost); the lower ones are their mirror.
+    Matrix6d h = surface_.selfadjointView<Eigen::Upper>();
+    const Eigen::Matrix3d a_rr = a_rr_.selfadjointView<Eigen::Upper>();
     h.topLeftCorner<3, 3>().diagonal().array() += a_sum_;
     const Eigen::Matrix3d s = skew(a_r_);
     h.topRightCorner<3, 3>() -= s;
     h.bottomLeftCorner<3, 3>() += s;
-    h.bottomRightCorner<3, 3>() += a_rr_.trace() * Eigen::Matrix3d::Identity() - a_rr_;
+    h.bottomRightCorner<3, 3>() += a_rr.trace() * Eigen::Matrix3d::Identity() - a_rr;
     return h;
   }
   const Vector6d& gradient() const { return gradient_; }

@@ -27,9 +27,10 @@ double scanLineScale(const TargetIndex& index, size_t samples) {
   const size_t step = std::max<size_t>(1, points.size() / samples);
   for (size_t i = 0; i < points.size(); i += step) {
     // Most neighbourhoods of a map sampled in two directions are two-dimensional within a few
-    // neighbours: ask for kFirst first, and for kMost only when those were not enough. The k
-    // nearest are a prefix of the k' > k nearest (ties by index), so the answer is the same.
-    size_t found = index.nearestWithinRadius(points[i], kFirst,
+    // neighbours: ask for kFewest first, then kFirst, and for kMost only when those were not
+    // enough. The k nearest are a prefix of the k' > k nearest (ties by index), so the answer is
+    // the same.
+    size_t found = index.nearestWithinRadius(points[i], kFewest,
                                              std::numeric_limits<double>::infinity(), neighbours,
                                              squared);
     if (found < static_cast<size_t>(kFewest)) continue;
@@ -39,7 +40,7 @@ double scanLineScale(const TargetIndex& index, size_t samples) {
     Eigen::Matrix3d outer = Eigen::Matrix3d::Zero();
     Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eigen;
     size_t m = 0;
-    for (bool widened = false;; widened = true) {
+    for (bool widened = false;;) {
       for (; m < found && scale < 0.0; ++m) {
         const Eigen::Vector3d offset = points[neighbours[m]] - points[i];
         sum += offset;
@@ -47,16 +48,20 @@ double scanLineScale(const TargetIndex& index, size_t samples) {
         const double count = static_cast<double>(m + 1);
         if (m + 1 < static_cast<size_t>(kFewest)) continue;
         const Eigen::Vector3d mean = sum / count;
-        eigen.computeDirect(outer / count - mean * mean.transpose());
+        eigen.computeDirect(outer / count - mean * mean.transpose(), Eigen::EigenvaluesOnly);
         const Eigen::Vector3d& variances = eigen.eigenvalues();  // ascending
         if (variances(2) > 0.0 &&
             variances(1) >= SurfaceNormalMap::kTwoDimensionalSpread * variances(2)) {
           scale = std::sqrt(squared[m]);
         }
       }
-      if (scale >= 0.0 || widened || found < static_cast<size_t>(kFirst)) break;
-      found = index.nearestWithinRadius(points[i], kMost, std::numeric_limits<double>::infinity(),
+      if (scale >= 0.0 || widened) break;
+      const int wider = found == static_cast<size_t>(kFewest) ? kFirst : kMost;
+      const size_t asked = found;
+      found = index.nearestWithinRadius(points[i], wider, std::numeric_limits<double>::infinity(),
                                         neighbours, squared);
+      if (found == asked) break;  // the map has no more points
+      widened = wider == kMost;
     }
     if (scale < 0.0) scale = std::sqrt(squared[found - 1]);
     scales.push_back(scale);
