@@ -123,8 +123,8 @@ class CandidateWeighting {
     return total;
   }
 
-  void operator()(const double* squared_residuals, size_t count, double* posterior,
-                  double* weight, double* log_precision) const {
+  void operator()(const double* squared_residuals, size_t count, double* posterior, double* weight,
+                  double* log_precision) const {
     if (count == 0) return;
     const double inverse_total =
         1.0 / unnormalised(squared_residuals, count, posterior, weight, log_precision);
@@ -133,7 +133,6 @@ class CandidateWeighting {
       weight[i] *= posterior[i];  // eqs. 15, 21
     }
   }
-
 
  private:
   double nu_;
@@ -206,7 +205,7 @@ void computeWeightedCorrespondences(const PointList& source, const CandidateSets
       }
       // The normalisation, rho_i = P(a_i) u_i and the sums in one pass.
       const double inverse_total = 1.0 / weighting.unnormalised(residuals, count, posterior, rho,
-                                                                 nu_statistic ? log_u : nullptr);
+                                                                nu_statistic ? log_u : nullptr);
       double w = 0.0, precision_term = 0.0;
       Point mean = Point::Zero();
       for (size_t i = 0; i < count; ++i) {

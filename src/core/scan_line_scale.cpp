@@ -30,9 +30,8 @@ double scanLineScale(const TargetIndex& index, size_t samples) {
     // neighbours: ask for kFewest first, then kFirst, and for kMost only when those were not
     // enough. The k nearest are a prefix of the k' > k nearest (ties by index), so the answer is
     // the same.
-    size_t found = index.nearestWithinRadius(points[i], kFewest,
-                                             std::numeric_limits<double>::infinity(), neighbours,
-                                             squared);
+    size_t found = index.nearestWithinRadius(
+        points[i], kFewest, std::numeric_limits<double>::infinity(), neighbours, squared);
     if (found < static_cast<size_t>(kFewest)) continue;
     double scale = -1.0;
     // Moments relative to the sample itself, which is its own nearest neighbour.
