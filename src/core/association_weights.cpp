@@ -4,145 +4,15 @@
 #include <cmath>
 #include <limits>
 
+#include "pda_registration/core/candidate_weighting.hpp"
 #include "pda_registration/core/noise_model.hpp"
 
 namespace pda_registration {
 namespace {
 
-constexpr double kDimension = 3.0;
+constexpr double kDimension = CandidateWeighting::kDimension;
 // Fewer source points on a known surface than this (or a tenth): sigma from the whole residual.
 constexpr size_t kMinimumSurfacePoints = 10;
-constexpr double kNegligibleDensity = 1e-16;
-
-// base^exponent for base in (0, 1] by repeated multiplication, when 2 * exponent is a small
-// integer (nu = 1, 2, 3, ... give (nu + 3) / 2 of that form): a fixed nu's common case. The form
-// is decided once per source point, not per candidate.
-class IntegerPower {
- public:
-  explicit IntegerPower(double exponent) {
-    const double twice = 2.0 * exponent;
-    applies_ = twice > 0.0 && twice <= 64.0 && twice == std::floor(twice);
-    if (applies_) {
-      whole_ = static_cast<int>(exponent);
-      half_ = (twice - 2.0 * whole_) > 0.5;
-    }
-  }
-
-  bool applies() const { return applies_; }
-
-  double operator()(double base) const {
-    double result = half_ ? std::sqrt(base) : 1.0;
-    double square = base;
-    for (int bits = whole_; bits > 0; bits >>= 1) {
-      if (bits & 1) result *= square;
-      square *= square;
-    }
-    return result;
-  }
-
- private:
-  bool applies_ = false;
-  int whole_ = 0;
-  bool half_ = false;
-};
-
-// log1p and exp for the E-step's non-integer powers, x >= 0: single precision (about 1e-7 relative
-// error in a posterior, far below anything EM resolves) at half the cost of the double calls.
-// Near 0, where 1 + x in single precision would lose x (a large nu), the series to x^3 (error
-// below x^4 / 4 <= 2.5e-13).
-double fastLog1p(double x) {
-  if (x < 1e-3) return x * (1.0 - x * (0.5 - x / 3.0));
-  return std::log(static_cast<float>(1.0 + x));
-}
-double fastExp(double x) { return std::exp(static_cast<float>(x)); }
-
-// The E-step's weights for one nu and sigma^2: what depends only on them is taken once per
-// E-step, not once per source point (the negligible-density cut costs an exp and a log).
-class CandidateWeighting {
- public:
-  CandidateWeighting(double nu, double sigma_squared, bool log_precision)
-      : nu_(nu),
-        gaussian_(std::isinf(nu)),
-        inverse_sigma_squared_(1.0 / sigma_squared),
-        exponent_(0.5 * (nu + kDimension)),
-        power_(exponent_),
-        // An estimated nu is not an integer: pow would cost a log and an exp per candidate, and
-        // nu's statistic another log. One log of nu + m_i serves both (the E-step's most
-        // expensive part).
-        by_logarithm_(!gaussian_ && (log_precision || !power_.applies())),
-        // Candidates whose density is below 1e-16 of the best's add nothing a double can hold to
-        // the normalisation: their posterior is 0, without a log or an exp.
-        negligible_ratio_(by_logarithm_ ? std::exp(-std::log(kNegligibleDensity) / exponent_) - 1.0
-                                        : 0.0) {}
-
-  // Writes the candidates' unnormalised posteriors (relative to the best candidate's) and expected
-  // precisions, and returns the posteriors' sum. weight[i] * posterior[i] / sum is rho_i.
-  double unnormalised(const double* squared_residuals, size_t count, double* posterior,
-                      double* weight, double* log_precision) const {
-    if (count == 0) return 0.0;
-    const double nu = nu_;
-    // weight[] holds the Mahalanobis distances until the last loop. Divisions are taken once per
-    // candidate: the E-step runs over every candidate of every EM iteration.
-    double best = std::numeric_limits<double>::infinity();
-    for (size_t i = 0; i < count; ++i) {
-      weight[i] = squared_residuals[i] * inverse_sigma_squared_;
-      best = std::min(best, weight[i]);
-    }
-    // Densities are taken relative to the best candidate's, so tiny sigmas cannot underflow every
-    // candidate to zero: for the t (eq. 20) p_i / p_best = ((nu + m_best) / (nu + m_i))^((nu+d)/2).
-    // log((nu + m_i) / (nu + m_best)) = log1p((m_i - m_best) / (nu + m_best)): exact for large nu
-    // too.
-    const double inverse_best = 1.0 / (nu + best);
-    const double log_best_precision =
-        log_precision && by_logarithm_ ? std::log((nu + kDimension) * inverse_best) : 0.0;
-    double total = 0.0;
-    for (size_t i = 0; i < count; ++i) {
-      const double mahalanobis = weight[i];
-      if (gaussian_) {
-        posterior[i] = std::exp(-0.5 * (mahalanobis - best));  // eq. 19
-        weight[i] = 1.0;
-      } else if (by_logarithm_) {
-        const double excess = (mahalanobis - best) * inverse_best;
-        if (excess > negligible_ratio_) {
-          posterior[i] = 0.0;
-          weight[i] = 0.0;
-          if (log_precision) log_precision[i] = 0.0;
-          continue;
-        }
-        const double log_ratio = fastLog1p(excess);
-        posterior[i] = fastExp(-exponent_ * log_ratio);      // eq. 20
-        weight[i] = (nu + kDimension) / (nu + mahalanobis);  // expected precision, eq. 16
-        if (log_precision) log_precision[i] = log_best_precision - log_ratio;
-      } else {
-        const double inverse = 1.0 / (nu + mahalanobis);
-        posterior[i] = power_((nu + best) * inverse);  // eq. 20
-        weight[i] = (nu + kDimension) * inverse;       // expected precision, eq. 16
-      }
-      total += posterior[i];
-    }
-    return total;
-  }
-
-  void operator()(const double* squared_residuals, size_t count, double* posterior, double* weight,
-                  double* log_precision) const {
-    if (count == 0) return;
-    const double inverse_total =
-        1.0 / unnormalised(squared_residuals, count, posterior, weight, log_precision);
-    for (size_t i = 0; i < count; ++i) {
-      posterior[i] *= inverse_total;
-      weight[i] *= posterior[i];  // eqs. 15, 21
-    }
-  }
-
- private:
-  double nu_;
-  bool gaussian_;
-  double inverse_sigma_squared_;
-  double exponent_;
-  IntegerPower power_;
-  bool by_logarithm_;
-  double negligible_ratio_;
-};
 
 }  // namespace
 
