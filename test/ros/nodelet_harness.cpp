@@ -54,6 +54,14 @@ NodeletHarness::NodeletHarness(const std::string& nodelet_name)
       });
 }
 
+NodeletHarness::~NodeletHarness() {
+  // Members go in reverse order of declaration: the vectors and their mutex before the
+  // subscribers. Shutting the subscribers down first waits out any callback in flight.
+  for (ros::Subscriber* subscriber : {&transform_, &pose_, &markers_, &rosout_, &diagnostics_}) {
+    subscriber->shutdown();
+  }
+}
+
 void NodeletHarness::closeDense() { dense_.shutdown(); }
 
 void NodeletHarness::reopenDense() {

@@ -32,6 +32,9 @@ class NodeletHarness {
  public:
   /// `nodelet_name` is the nodelet's node name (its private topics live below it).
   explicit NodeletHarness(const std::string& nodelet_name);
+  /// Unsubscribes before the recorded messages go: the spinner's threads keep delivering
+  /// (/rosout, /diagnostics) until then, and a callback must not reach a destroyed vector.
+  ~NodeletHarness();
 
   void publishDense(const PointList& points, const std::string& frame);
   void publishSparse(const PointList& points, const std::string& frame);

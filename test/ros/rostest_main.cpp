@@ -3,9 +3,13 @@
 #include <gtest/gtest.h>
 #include <ros/ros.h>
 
+#include <cstdio>
 #include <string>
 
 int main(int argc, char** argv) {
+  // Line-buffered: rostest logs stdout to a file, where a crash would otherwise lose the failure
+  // messages gtest printed before it.
+  std::setvbuf(stdout, nullptr, _IOLBF, BUFSIZ);
   ::testing::InitGoogleTest(&argc, argv);
   const std::string program = argv[0];
   ros::init(argc, argv, program.substr(program.find_last_of('/') + 1));
