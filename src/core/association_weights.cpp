@@ -114,32 +114,38 @@ void computeWeightedCorrespondences(const PointList& source, const CandidateSets
     }
   }
 
+  // Compacted in source order: counted first, so that each field is sized once and written by
+  // index (EM calls this every iteration; growing nine vectors point by point cost a twentieth
+  // of an alignment).
   WeightedCorrespondences& out = *out_correspondences;
   out.sampling = shapes.sampling;
-  out.source_index.clear();
-  out.source.clear();
-  out.target_mean.clear();
-  out.weight.clear();
-  out.normal.clear();
-  out.inverse_kappa.clear();
-  out.spread_across.clear();
-  out.spread_along.clear();
-  out.second_moment.clear();
+  const size_t count = static_cast<size_t>(
+      std::count_if(weights.begin(), weights.end(), [](double w) { return w > 0.0; }));
+  out.source_index.resize(count);
+  out.source.resize(count);
+  out.target_mean.resize(count);
+  out.weight.resize(count);
+  out.normal.resize(count);
+  out.inverse_kappa.resize(count);
+  out.spread_across.resize(count);
+  out.spread_along.resize(count);
+  out.second_moment.resize(second_moments ? count : 0);
   double precision_sum = 0.0;
-  for (size_t j = 0; j < n; ++j) {
+  for (size_t j = 0, c = 0; j < n; ++j) {
     if (!(weights[j] > 0.0)) continue;
     precision_sum += log_u_minus_u[j];
-    out.source_index.push_back(j);
-    out.source.push_back(source[j]);
-    out.target_mean.push_back(means[j]);
-    out.weight.push_back(weights[j]);
-    out.normal.push_back(shapes.normalAt(j));
-    out.inverse_kappa.push_back(shapes.inverseKappaAt(j));
-    out.spread_across.push_back(across[j]);
-    out.spread_along.push_back(along[j]);
-    if (second_moments) out.second_moment.push_back(moments[j]);
+    out.source_index[c] = j;
+    out.source[c] = source[j];
+    out.target_mean[c] = means[j];
+    out.weight[c] = weights[j];
+    out.normal[c] = shapes.normalAt(j);
+    out.inverse_kappa[c] = shapes.inverseKappaAt(j);
+    out.spread_across[c] = across[j];
+    out.spread_along[c] = along[j];
+    if (second_moments) out.second_moment[c] = moments[j];
+    ++c;
   }
-  out.mean_log_u_minus_u = out.size() == 0 ? 0.0 : precision_sum / static_cast<double>(out.size());
+  out.mean_log_u_minus_u = count == 0 ? 0.0 : precision_sum / static_cast<double>(count);
 }
 
 Associations computeAssociations(const PointList& source, const CandidateSets& candidates,

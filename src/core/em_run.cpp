@@ -41,25 +41,30 @@ bool runMStep(const WeightedCorrespondences& correspondences, const Registration
 }  // namespace
 
 void lookupNormals(const SurfaceNormalMap& map, const PointList& source, const Eigen::Isometry3d& T,
-                   int threads, PointList* normals, const CandidateSets* only_with_candidates) {
+                   int threads, PointList* normals, const CandidateSets* only_with_candidates,
+                   std::vector<SurfaceNormalMap::Memo>* memos) {
   normals->resize(source.size());
+  if (memos && memos->size() < source.size()) memos->resize(source.size());
+  SurfaceNormalMap::Memo* memo = memos ? memos->data() : nullptr;
 #pragma omp parallel for schedule(static) num_threads(std::max(threads, 1))
   for (long long j = 0; j < static_cast<long long>(source.size()); ++j) {
     const bool wanted =
         !only_with_candidates || (static_cast<size_t>(j) < only_with_candidates->sourceCount() &&
                                   only_with_candidates->candidateCount(j) > 0);
-    (*normals)[j] = wanted ? map.normalAt(T * source[j]) : Point::Zero();
+    (*normals)[j] = wanted ? map.normalAt(T * source[j], memo ? memo + j : nullptr) : Point::Zero();
   }
 }
 
 double computeShapeInputs(const SurfaceNormalMap& normal_map, const PointList& source,
                           const CandidateSets& candidates, const Eigen::Isometry3d& T,
                           const RegistrationParameters& p, PointList* normals,
-                          std::vector<double>* spread, bool every_point) {
+                          std::vector<double>* spread, bool every_point,
+                          std::vector<SurfaceNormalMap::Memo>* memos) {
   normals->clear();
   spread->clear();
   if (p.surface_anisotropy > 1.0) {
-    lookupNormals(normal_map, source, T, p.threads, normals, every_point ? nullptr : &candidates);
+    lookupNormals(normal_map, source, T, p.threads, normals, every_point ? nullptr : &candidates,
+                  memos);
   }
   if (!usesSamplingModel(p)) return 0.0;
   *spread = candidateSpread(candidates, p.threads);
@@ -76,7 +81,8 @@ bool runEm(const PointList& source, const SurfaceNormalMap& normal_map,
   // The normals go straight into the shapes, which keep them for every iteration of the run.
   PointList& normals = workspace->shapes.normal;
   const double thickness =
-      computeShapeInputs(normal_map, source, candidates, state->T, p, &normals, &workspace->spread);
+      computeShapeInputs(normal_map, source, candidates, state->T, p, &normals, &workspace->spread,
+                         /*every_point=*/false, &workspace->normal_memos);
   // A floor keeps the t-weights defined when the clouds match exactly (sigma -> 0); the sampling
   // model's is the target's own thickness about its surface.
   const double sigma_squared_floor = std::max(std::pow(1e-6 * p.radius, 2), thickness);

@@ -70,7 +70,7 @@ void fillFinalStatistics(const PointList& source, const TargetIndex& index,
                          RegistrationResult* result, Associations* associations) {
   const CandidateSets& candidates = workspace->candidates;
   computeShapeInputs(normal_map, source, candidates, state.T, p, &workspace->normals,
-                     &workspace->spread, /*every_point=*/true);
+                     &workspace->spread, /*every_point=*/true, &workspace->normal_memos);
   // The degeneracy check needs the normals even when the noise model does not.
   PointList isotropic_normals;
   if (workspace->normals.empty()) {

@@ -2,6 +2,7 @@
 
 #include <Eigen/Eigenvalues>
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 
 namespace pda_registration {
@@ -72,6 +73,8 @@ size_t slotOf(uint64_t key, int shift) {
 }  // namespace
 
 void SurfaceNormalMap::rebuildLookup() {
+  static std::atomic<uint64_t> next_version{1};
+  version_ = next_version++;
   lookup_.resize(levels_.size());
   for (size_t l = 0; l < levels_.size(); ++l) {
     const auto& normals = levels_[l].normals;
@@ -152,7 +155,7 @@ size_t SurfaceNormalMap::voxelsWithNormal() const {
   return count;
 }
 
-Eigen::Vector3d SurfaceNormalMap::normalAt(const Point& p) const {
+Eigen::Vector3d SurfaceNormalMap::normalAt(const Point& p, Memo* memo) const {
   if (lookup_.empty()) return Eigen::Vector3d::Zero();
   // The cell of p on each level, as voxelCellOf(p, 1 / level size) gives it: the levels' sizes
   // double exactly, so p / size halves exactly, and a cast with a correction is floor() without
@@ -162,16 +165,30 @@ Eigen::Vector3d SurfaceNormalMap::normalAt(const Point& p) const {
     return i - (v < static_cast<double>(i) ? 1 : 0);
   };
   Point scaled = p * (1.0 / levels_[0].voxel_size);
-  for (size_t l = 0; l < lookup_.size(); ++l, scaled *= 0.5) {
-    const FlatLevel& flat = lookup_[l];
-    const uint64_t key =
-        voxelCellKey({cellFloor(scaled.x()), cellFloor(scaled.y()), cellFloor(scaled.z())});
-    const size_t mask = flat.keys.size() - 1;
-    for (size_t slot = slotOf(key, flat.shift); flat.keys[slot] != 0; slot = (slot + 1) & mask) {
-      if (flat.keys[slot] == key + 1) return flat.normals[slot].cast<double>();
+  const Cell finest{cellFloor(scaled.x()), cellFloor(scaled.y()), cellFloor(scaled.z())};
+  if (memo && memo->version == version_ && memo->cell == finest) return memo->normal;
+  Eigen::Vector3d normal = Eigen::Vector3d::Zero();
+  Cell cell = finest;
+  for (size_t l = 0; l < lookup_.size(); ++l) {
+    if (l > 0) {
+      scaled *= 0.5;
+      cell = {cellFloor(scaled.x()), cellFloor(scaled.y()), cellFloor(scaled.z())};
     }
+    const FlatLevel& flat = lookup_[l];
+    const uint64_t key = voxelCellKey(cell);
+    const size_t mask = flat.keys.size() - 1;
+    bool found = false;
+    for (size_t slot = slotOf(key, flat.shift); flat.keys[slot] != 0; slot = (slot + 1) & mask) {
+      if (flat.keys[slot] == key + 1) {
+        normal = flat.normals[slot].cast<double>();
+        found = true;
+        break;
+      }
+    }
+    if (found) break;
   }
-  return Eigen::Vector3d::Zero();
+  if (memo) *memo = {version_, finest, normal};
+  return normal;
 }
 
 }  // namespace pda_registration

@@ -40,10 +40,13 @@ bool runEm(const PointList& source, const SurfaceNormalMap& normal_map,
 
 /// The target surface normal at every moved source point (zero where unknown). With
 /// `only_with_candidates`, only at the points that have candidates there (zero elsewhere): a
-/// run's E-step reads no other, and on a partial overlap most points have none.
+/// run's E-step reads no other, and on a partial overlap most points have none. `memos`, when
+/// given, keeps each point's last answer (SurfaceNormalMap::Memo; resized as needed): runs move
+/// the points little, and most stay in their voxel.
 void lookupNormals(const SurfaceNormalMap& map, const PointList& source, const Eigen::Isometry3d& T,
                    int threads, PointList* normals,
-                   const CandidateSets* only_with_candidates = nullptr);
+                   const CandidateSets* only_with_candidates = nullptr,
+                   std::vector<SurfaceNormalMap::Memo>* memos = nullptr);
 
 /// What the noise shapes of one run are made from: the target normals at the moved source points
 /// (not needed by the isotropic model: left empty) and the candidates' sampling spread (sampling
@@ -53,6 +56,7 @@ void lookupNormals(const SurfaceNormalMap& map, const PointList& source, const E
 double computeShapeInputs(const SurfaceNormalMap& normal_map, const PointList& source,
                           const CandidateSets& candidates, const Eigen::Isometry3d& T,
                           const RegistrationParameters& p, PointList* normals,
-                          std::vector<double>* spread, bool every_point = false);
+                          std::vector<double>* spread, bool every_point = false,
+                          std::vector<SurfaceNormalMap::Memo>* memos = nullptr);
 
 }  // namespace pda_registration

@@ -9,6 +9,7 @@
 #include "pda_registration/core/association_weights.hpp"
 #include "pda_registration/core/candidate_sets.hpp"
 #include "pda_registration/core/noise_shapes.hpp"
+#include "pda_registration/core/surface_normals.hpp"
 
 namespace pda_registration {
 
@@ -20,6 +21,9 @@ struct RegistrationWorkspace {
   PointList normals;           ///< target normal at each moved source point (final statistics;
                                ///< a run keeps its own in shapes.normal)
   std::vector<double> spread;  ///< candidates' sampling spread (one run)
+  /// Each source point's last normal lookup, slot by slot (valid only for the voxel and map
+  /// version it names, so any source may reuse the slots).
+  std::vector<SurfaceNormalMap::Memo> normal_memos;
   NoiseShapes shapes;
   EStepBuffers e_step;
   WeightedCorrespondences correspondences;

@@ -37,7 +37,19 @@ class SurfaceNormalMap {
 
   /// The unit normal at p from the finest level whose voxel around p is planar; zero when no
   /// level has one (empty space, a line, a blob, or fewer than 5 points).
-  Eigen::Vector3d normalAt(const Point& p) const;
+  Eigen::Vector3d normalAt(const Point& p) const { return normalAt(p, nullptr); }
+
+  /// A lookup's answer kept for the next question about a point that moved a little (a source
+  /// point, run after run): a point in the same finest voxel gets the same answer (every coarser
+  /// voxel around it is the same too), without probing the levels' tables. Tied to the map's
+  /// version, which every add() changes.
+  struct Memo {
+    uint64_t version = 0;  ///< 0: holds nothing
+    VoxelCell cell;
+    Eigen::Vector3d normal = Eigen::Vector3d::Zero();
+  };
+  /// normalAt(p), answered from *memo when it holds p's finest voxel, and *memo updated.
+  Eigen::Vector3d normalAt(const Point& p, Memo* memo) const;
 
   size_t voxelsWithNormal() const;
 
@@ -71,6 +83,7 @@ class SurfaceNormalMap {
   };
   std::vector<Level> levels_;
   std::vector<FlatLevel> lookup_;
+  uint64_t version_ = 0;  ///< new (never 0) with every rebuildLookup()
 };
 
 }  // namespace pda_registration
