@@ -23,30 +23,23 @@ void computeCandidateWeights(const double* squared_residuals, size_t count, doub
   weighting(squared_residuals, count, posterior, weight, log_precision);
 }
 
-void computeWeightedCorrespondences(const PointList& source, const CandidateSets& candidates,
-                                    const NoiseShapes& shapes,
-                                    const Eigen::Isometry3d& T_target_source, double nu,
-                                    double sigma_squared, int threads, EStepBuffers* buffers,
-                                    WeightedCorrespondences* out_correspondences) {
+namespace {
+
+// The E-step's pass over the source points, compiled once per weighting form (and with or without
+// nu's statistic): a loop that carries only its own form's branches keeps its values in registers
+// (the one loop for every form spilled and reloaded a few dozen of them per point).
+template <CandidateWeighting::Form kForm, bool kNuStatistic>
+void weighSourcePoints(const PointList& source, const CandidateSets& candidates,
+                       const NoiseShapes& shapes, const Eigen::Isometry3d& T_target_source,
+                       const CandidateWeighting& weighting, int threads, EStepBuffers* buffers) {
   const size_t n = candidates.sourceCount();
-  // Per-source results are written to fixed slots in parallel and compacted serially, so the
-  // sums (and therefore the estimate) are the same for any thread count.
   PointList& means = buffers->means;
   std::vector<double>& weights = buffers->weights;
   std::vector<double>& across = buffers->across;
   std::vector<double>& along = buffers->along;
   std::vector<double>& log_u_minus_u = buffers->log_u_minus_u;
-  // Only a positive weight marks a slot as written (and the others are read only then).
-  weights.assign(n, 0.0);
-  means.resize(n);
-  across.resize(n);
-  along.resize(n);
-  log_u_minus_u.resize(n);
-  const bool nu_statistic = buffers->nu_statistic && !std::isinf(nu);
-  const CandidateWeighting weighting(nu, sigma_squared, nu_statistic);
   const bool second_moments = buffers->second_moments;
   std::vector<Eigen::Matrix3d>& moments = buffers->moments;
-  if (second_moments) moments.resize(n);
 
 #pragma omp parallel num_threads(std::max(threads, 1))
   {
@@ -74,8 +67,9 @@ void computeWeightedCorrespondences(const PointList& source, const CandidateSets
         residuals[i] = shapedSquaredNorm(y[i] - x, normal, inverse_kappa);
       }
       // The normalisation, rho_i = P(a_i) u_i and the sums in one pass.
-      const double inverse_total = 1.0 / weighting.unnormalised(residuals, count, posterior, rho,
-                                                                nu_statistic ? log_u : nullptr);
+      const double inverse_total =
+          1.0 / weighting.unnormalisedAs<kForm, kNuStatistic>(residuals, count, posterior, rho,
+                                                               kNuStatistic ? log_u : nullptr);
       double w = 0.0, precision_term = 0.0;
       Point mean = Point::Zero();
       for (size_t i = 0; i < count; ++i) {
@@ -84,7 +78,7 @@ void computeWeightedCorrespondences(const PointList& source, const CandidateSets
         w += rho[i];
         mean += rho[i] * y[i];
         // P(a_i) (log u_i - u_i), with P(a_i) u_i = rho_i.
-        if (nu_statistic) precision_term += posterior[i] * log_u[i] - rho[i];
+        if constexpr (kNuStatistic) precision_term += posterior[i] * log_u[i] - rho[i];
       }
       if (!(w > 0.0)) continue;
       mean /= w;
@@ -112,6 +106,54 @@ void computeWeightedCorrespondences(const PointList& source, const CandidateSets
       along[j] = spread_along;
       log_u_minus_u[j] = precision_term;
     }
+  }
+}
+
+}  // namespace
+
+void computeWeightedCorrespondences(const PointList& source, const CandidateSets& candidates,
+                                    const NoiseShapes& shapes,
+                                    const Eigen::Isometry3d& T_target_source, double nu,
+                                    double sigma_squared, int threads, EStepBuffers* buffers,
+                                    WeightedCorrespondences* out_correspondences) {
+  const size_t n = candidates.sourceCount();
+  // Per-source results are written to fixed slots in parallel and compacted serially, so the
+  // sums (and therefore the estimate) are the same for any thread count.
+  PointList& means = buffers->means;
+  std::vector<double>& weights = buffers->weights;
+  std::vector<double>& across = buffers->across;
+  std::vector<double>& along = buffers->along;
+  std::vector<double>& log_u_minus_u = buffers->log_u_minus_u;
+  // Only a positive weight marks a slot as written (and the others are read only then).
+  weights.assign(n, 0.0);
+  means.resize(n);
+  across.resize(n);
+  along.resize(n);
+  log_u_minus_u.resize(n);
+  const bool nu_statistic = buffers->nu_statistic && !std::isinf(nu);
+  const CandidateWeighting weighting(nu, sigma_squared, nu_statistic);
+  const bool second_moments = buffers->second_moments;
+  std::vector<Eigen::Matrix3d>& moments = buffers->moments;
+  if (second_moments) moments.resize(n);
+  using Form = CandidateWeighting::Form;
+  switch (weighting.form()) {
+    case Form::kGaussian:
+      weighSourcePoints<Form::kGaussian, false>(source, candidates, shapes, T_target_source,
+                                                weighting, threads, buffers);
+      break;
+    case Form::kIntegerPower:
+      weighSourcePoints<Form::kIntegerPower, false>(source, candidates, shapes, T_target_source,
+                                                    weighting, threads, buffers);
+      break;
+    case Form::kLogarithm:
+      if (nu_statistic) {
+        weighSourcePoints<Form::kLogarithm, true>(source, candidates, shapes, T_target_source,
+                                                  weighting, threads, buffers);
+      } else {
+        weighSourcePoints<Form::kLogarithm, false>(source, candidates, shapes, T_target_source,
+                                                   weighting, threads, buffers);
+      }
+      break;
   }
 
   // Compacted in source order: counted first, so that each field is sized once and written by

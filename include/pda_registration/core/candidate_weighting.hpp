@@ -80,10 +80,43 @@ class CandidateWeighting {
         negligible_ratio_(by_logarithm_ ? std::exp(-std::log(kNegligibleDensity) / exponent_) - 1.0
                                         : 0.0) {}
 
+  /// Which of the three forms the weights take for this nu: fixed for the E-step, so that its
+  /// loop can be compiled once per form (unnormalisedAs), free of the others' branches.
+  enum class Form {
+    kGaussian,      ///< nu = infinity (eq. 19)
+    kLogarithm,     ///< any other nu through one log and one exp (and nu's statistic)
+    kIntegerPower,  ///< (nu + 3) / 2 a multiple of 1/2: repeated multiplication
+  };
+  Form form() const {
+    return gaussian_ ? Form::kGaussian : (by_logarithm_ ? Form::kLogarithm : Form::kIntegerPower);
+  }
+
   // Writes the candidates' unnormalised posteriors (relative to the best candidate's) and expected
   // precisions, and returns the posteriors' sum. weight[i] * posterior[i] / sum is rho_i.
   double unnormalised(const double* squared_residuals, size_t count, double* posterior,
                       double* weight, double* log_precision) const {
+    switch (form()) {
+      case Form::kGaussian:
+        return unnormalisedAs<Form::kGaussian, false>(squared_residuals, count, posterior, weight,
+                                                      nullptr);
+      case Form::kIntegerPower:
+        return unnormalisedAs<Form::kIntegerPower, false>(squared_residuals, count, posterior,
+                                                          weight, nullptr);
+      case Form::kLogarithm:
+        break;
+    }
+    return log_precision ? unnormalisedAs<Form::kLogarithm, true>(squared_residuals, count,
+                                                                  posterior, weight, log_precision)
+                         : unnormalisedAs<Form::kLogarithm, false>(squared_residuals, count,
+                                                                   posterior, weight, nullptr);
+  }
+
+  /// unnormalised() for this object's form() (kForm must be it), writing log_precision only when
+  /// kLogPrecision (kLogarithm only).
+  template <Form kForm, bool kLogPrecision>
+  double unnormalisedAs(const double* squared_residuals, size_t count, double* posterior,
+                        double* weight, double* log_precision) const {
+    static_assert(!kLogPrecision || kForm == Form::kLogarithm, "nu's statistic needs the log");
     if (count == 0) return 0.0;
     const double nu = nu_;
     // weight[] holds the Mahalanobis distances until the last loop. Divisions are taken once per
@@ -99,25 +132,25 @@ class CandidateWeighting {
     // too.
     const double inverse_best = 1.0 / (nu + best);
     const double log_best_precision =
-        log_precision && by_logarithm_ ? std::log((nu + kDimension) * inverse_best) : 0.0;
+        kLogPrecision ? std::log((nu + kDimension) * inverse_best) : 0.0;
     double total = 0.0;
     for (size_t i = 0; i < count; ++i) {
       const double mahalanobis = weight[i];
-      if (gaussian_) {
+      if constexpr (kForm == Form::kGaussian) {
         posterior[i] = std::exp(-0.5 * (mahalanobis - best));  // eq. 19
         weight[i] = 1.0;
-      } else if (by_logarithm_) {
+      } else if constexpr (kForm == Form::kLogarithm) {
         const double excess = (mahalanobis - best) * inverse_best;
         if (excess > negligible_ratio_) {
           posterior[i] = 0.0;
           weight[i] = 0.0;
-          if (log_precision) log_precision[i] = 0.0;
+          if constexpr (kLogPrecision) log_precision[i] = 0.0;
           continue;
         }
         const double log_ratio = candidate_weighting_detail::fastLog1p(excess);
         posterior[i] = candidate_weighting_detail::fastExp(-exponent_ * log_ratio);  // eq. 20
         weight[i] = (nu + kDimension) / (nu + mahalanobis);  // expected precision, eq. 16
-        if (log_precision) log_precision[i] = log_best_precision - log_ratio;
+        if constexpr (kLogPrecision) log_precision[i] = log_best_precision - log_ratio;
       } else {
         const double inverse = 1.0 / (nu + mahalanobis);
         posterior[i] = power_((nu + best) * inverse);  // eq. 20
