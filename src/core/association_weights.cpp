@@ -69,7 +69,7 @@ void weighSourcePoints(const PointList& source, const CandidateSets& candidates,
       // The normalisation, rho_i = P(a_i) u_i and the sums in one pass.
       const double inverse_total =
           1.0 / weighting.unnormalisedAs<kForm, kNuStatistic>(residuals, count, posterior, rho,
-                                                               kNuStatistic ? log_u : nullptr);
+                                                              kNuStatistic ? log_u : nullptr);
       double w = 0.0, precision_term = 0.0;
       Point mean = Point::Zero();
       for (size_t i = 0; i < count; ++i) {
