@@ -29,6 +29,12 @@ namespace {
 // answered from them: the farther the nearest point outside the kept ones, the larger the move
 // that still cannot let another point in.
 constexpr size_t kReserve = 4;
+// The searches reach this much beyond the radius for the points to keep (candidates stay within
+// the radius). A point with fewer than k + kReserve + 1 target points within the radius (at the
+// edge of the overlap, in sparse parts of the map) otherwise knew only that the others lay beyond
+// the radius, so any move at all could let one in, and it was searched again every run: a seventh
+// of a room scan's points in every run at the full radius.
+constexpr double kKeepReach = 1.05;
 
 // Answers a source point that moved by `moved` since its last search from the `kept` target
 // points that search returned, without a search: every other target point was at least
@@ -104,6 +110,7 @@ void findCandidateSets(const TargetIndex& target, const PointList& source,
   outsider_bound.resize(n);
   const PointList& target_points = target.points();
   const double squared_radius = radius * radius;
+  const double reach = kKeepReach * radius;
   std::vector<unsigned char>& answered = buffers->answered;
   answered.assign(n, 0);
 
@@ -123,11 +130,14 @@ void findCandidateSets(const TargetIndex& target, const PointList& source,
     size_t hints[kMaxHints];
     const size_t n_hints = hinted ? kept[j] : 0;
     std::copy_n(indices, n_hints, hints);
-    const size_t nearest = target.nearestWithinRadius(query, static_cast<int>(stride), radius,
+    const size_t nearest = target.nearestWithinRadius(query, static_cast<int>(stride), reach,
                                                       indices, distances, hints, n_hints);
-    found[j] = std::min(nearest, capacity);
+    // The candidates: those within the radius, a prefix of the answer (nearest first).
+    size_t within = 0;
+    while (within < std::min(nearest, capacity) && distances[within] < squared_radius) ++within;
+    found[j] = within;
     kept[j] = std::min(nearest, stride - 1);
-    outsider_bound[j] = nearest == stride ? distances[stride - 1] : squared_radius;
+    outsider_bound[j] = nearest == stride ? distances[stride - 1] : reach * reach;
   }
   buffers->source = source.data();
   buffers->target = &target;
