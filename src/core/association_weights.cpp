@@ -119,22 +119,17 @@ void computeWeightedCorrespondences(const PointList& source, const CandidateSets
   const size_t n = candidates.sourceCount();
   // Per-source results are written to fixed slots in parallel and compacted serially, so the
   // sums (and therefore the estimate) are the same for any thread count.
-  PointList& means = buffers->means;
-  std::vector<double>& weights = buffers->weights;
-  std::vector<double>& across = buffers->across;
-  std::vector<double>& along = buffers->along;
-  std::vector<double>& log_u_minus_u = buffers->log_u_minus_u;
+  const EStepBuffers& slots = *buffers;
   // Only a positive weight marks a slot as written (and the others are read only then).
-  weights.assign(n, 0.0);
-  means.resize(n);
-  across.resize(n);
-  along.resize(n);
-  log_u_minus_u.resize(n);
+  buffers->weights.assign(n, 0.0);
+  buffers->means.resize(n);
+  buffers->across.resize(n);
+  buffers->along.resize(n);
+  buffers->log_u_minus_u.resize(n);
   const bool nu_statistic = buffers->nu_statistic && !std::isinf(nu);
   const CandidateWeighting weighting(nu, sigma_squared, nu_statistic);
   const bool second_moments = buffers->second_moments;
-  std::vector<Eigen::Matrix3d>& moments = buffers->moments;
-  if (second_moments) moments.resize(n);
+  if (second_moments) buffers->moments.resize(n);
   using Form = CandidateWeighting::Form;
   switch (weighting.form()) {
     case Form::kGaussian:
@@ -162,7 +157,7 @@ void computeWeightedCorrespondences(const PointList& source, const CandidateSets
   WeightedCorrespondences& out = *out_correspondences;
   out.sampling = shapes.sampling;
   const size_t count = static_cast<size_t>(
-      std::count_if(weights.begin(), weights.end(), [](double w) { return w > 0.0; }));
+      std::count_if(slots.weights.begin(), slots.weights.end(), [](double w) { return w > 0.0; }));
   out.source_index.resize(count);
   out.source.resize(count);
   out.target_mean.resize(count);
@@ -174,17 +169,17 @@ void computeWeightedCorrespondences(const PointList& source, const CandidateSets
   out.second_moment.resize(second_moments ? count : 0);
   double precision_sum = 0.0;
   for (size_t j = 0, c = 0; j < n; ++j) {
-    if (!(weights[j] > 0.0)) continue;
-    precision_sum += log_u_minus_u[j];
+    if (!(slots.weights[j] > 0.0)) continue;
+    precision_sum += slots.log_u_minus_u[j];
     out.source_index[c] = j;
     out.source[c] = source[j];
-    out.target_mean[c] = means[j];
-    out.weight[c] = weights[j];
+    out.target_mean[c] = slots.means[j];
+    out.weight[c] = slots.weights[j];
     out.normal[c] = shapes.normalAt(j);
     out.inverse_kappa[c] = shapes.inverseKappaAt(j);
-    out.spread_across[c] = across[j];
-    out.spread_along[c] = along[j];
-    if (second_moments) out.second_moment[c] = moments[j];
+    out.spread_across[c] = slots.across[j];
+    out.spread_along[c] = slots.along[j];
+    if (second_moments) out.second_moment[c] = slots.moments[j];
     ++c;
   }
   out.mean_log_u_minus_u = count == 0 ? 0.0 : precision_sum / static_cast<double>(count);
