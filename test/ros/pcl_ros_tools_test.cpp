@@ -16,6 +16,10 @@
 #include <fstream>
 #include <functional>
 #include <mutex>
+#include <sstream>
+#include <string>
+#include <system_error>
+#include <vector>
 
 #include "background_command.hpp"
 #include "test_support/command_run.hpp"
@@ -82,6 +86,44 @@ bool advertised(const std::string& topic) {
     if (info.name == topic) return true;
   }
   return false;
+}
+
+// True once a binary PCD file holds all the data its header announces. pointcloud_to_pcd writes
+// the file while the test polls it, and PCL's reader does not guard against a file cut short: a
+// poll that read a half-written file crashed the test process (SIGSEGV, once in a CI-like run).
+bool binaryPcdComplete(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::vector<size_t> sizes, counts;
+  size_t points = 0;
+  bool binary = false;
+  for (std::string line; std::getline(in, line);) {
+    std::istringstream words(line);
+    std::string key;
+    words >> key;
+    size_t value = 0;
+    if (key == "SIZE") {
+      while (words >> value) sizes.push_back(value);
+    } else if (key == "COUNT") {
+      while (words >> value) counts.push_back(value);
+    } else if (key == "POINTS") {
+      words >> points;
+    } else if (key == "DATA") {
+      std::string kind;
+      words >> kind;
+      binary = kind == "binary";
+      break;
+    }
+  }
+  // A DATA line without its newline yet leaves the stream at its end: tellg() is -1 then.
+  const std::streamoff header = in.tellg();
+  if (!binary || header < 0 || points == 0 || sizes.empty() || sizes.size() != counts.size()) {
+    return false;
+  }
+  size_t point_size = 0;
+  for (size_t i = 0; i < sizes.size(); ++i) point_size += sizes[i] * counts[i];
+  std::error_code error;
+  const uintmax_t file_size = fs::file_size(path, error);
+  return !error && file_size >= static_cast<uintmax_t>(header) + points * point_size;
 }
 
 size_t pcdPointCount(const std::string& path) {
@@ -172,6 +214,7 @@ TEST(PclRosTools, PointcloudToPcdSavesATopicAsPcdFiles) {
   const auto holdsTheMap = [&] {
     for (const auto& entry : fs::directory_iterator(W)) {
       if (entry.path().filename().string().rfind("dense_map_", 0) != 0) continue;
+      if (!binaryPcdComplete(entry.path().string())) continue;
       saved.clear();
       if (pcl::io::loadPCDFile(entry.path().string(), saved) != 0) continue;
       if (saved.size() != original.size()) continue;
