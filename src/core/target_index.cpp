@@ -179,13 +179,11 @@ struct TargetIndex::Tree {
     if (node.axis < 0) {
       // The query and the bound in locals: only offer() changes the bound, and the compiler
       // cannot tell that the result's stores leave the query alone (it reloaded both per point).
-      const double qx = q.x(), qy = q.y(), qz = q.z();
+      const Point query = q;
       double bound = result->bound();
       for (uint32_t i = node.first; i < node.last; ++i) {
         const uint32_t index = order[i];
-        const Point& p = points[index];
-        const double dx = qx - p.x(), dy = qy - p.y(), dz = qz - p.z();
-        const double d = dx * dx + dy * dy + dz * dz;  // squaredDistance(q, p)
+        const double d = squaredDistance(query, points[index]);
         if (d <= bound) {
           result->offer(d, index);
           bound = result->bound();
