@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "pda_registration/core/degrees_of_freedom.hpp"
+#include "pda_registration/core/noise_model.hpp"
 
 using pda_registration::computeCandidateWeights;
 
@@ -111,6 +112,92 @@ TEST(AssociationWeights, LoneFarCandidateIsDownWeightedByStudentT) {
   computeCandidateWeights(residuals, 1, 5.0, 1.0, posterior, weight);
   EXPECT_DOUBLE_EQ(posterior[0], 1.0);
   EXPECT_NEAR(weight[0], 8.0 / 105.0, 1e-12);
+}
+
+// The E-step's reduction (association_weights.hpp): per source point, W |y_bar - z|^2_M + S equals
+// sum_k rho_k |y_k - z|^2_M for any z, with S split across and along the surface. Checked against
+// the candidates one by one, for every weighting form, on a map 2 km from its origin (the spread
+// is taken from sums about the source point, which must not cancel there).
+TEST(AssociationWeights, ReducedCorrespondencesKeepEveryCandidatesObjective) {
+  using pda_registration::Point;
+  std::mt19937 random(7);
+  std::uniform_real_distribution<double> unit(-1.0, 1.0);
+  const Point far(2000.0, -1500.0, 30.0);
+  pda_registration::PointList source;
+  pda_registration::CandidateSets candidates;
+  pda_registration::NoiseShapes shapes;
+  candidates.offsets.push_back(0);
+  for (int j = 0; j < 40; ++j) {
+    const Point x = far + 5.0 * Point(unit(random), unit(random), unit(random));
+    source.push_back(x);
+    const int count = 1 + j % 6;
+    for (int c = 0; c < count; ++c) {
+      candidates.points.push_back(x + 0.2 * Point(unit(random), unit(random), unit(random)));
+      candidates.target_indices.push_back(candidates.target_indices.size());
+    }
+    candidates.offsets.push_back(candidates.points.size());
+    // Every third point has no normal (an isotropic shape).
+    shapes.normal.push_back(j % 3 == 0 ? Point::Zero()
+                                       : Point(unit(random), unit(random), 1.0).normalized());
+    shapes.inverse_kappa.push_back(j % 3 == 0 ? 1.0 : 0.01 + 0.5 * (unit(random) + 1.0));
+  }
+  Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
+  T.translate(Point(0.01, -0.02, 0.005));
+  T.rotate(Eigen::AngleAxisd(0.002, Point::UnitZ()));
+  const double sigma_squared = 0.01;
+  for (const double nu : {kInf, 5.0, 3.7}) {
+    pda_registration::EStepBuffers buffers;
+    buffers.nu_statistic = true;
+    pda_registration::WeightedCorrespondences reduced;
+    pda_registration::computeWeightedCorrespondences(source, candidates, shapes, T, nu,
+                                                     sigma_squared, 1, &buffers, &reduced);
+    ASSERT_EQ(reduced.size(), source.size());
+    for (size_t j = 0; j < source.size(); ++j) {
+      const size_t first = candidates.offsets[j], count = candidates.candidateCount(j);
+      const Point x = T * source[j];
+      const Point& n = shapes.normal[j];
+      const double inverse_kappa = shapes.inverse_kappa[j];
+      std::vector<double> residuals(count), posterior(count), rho(count), log_precision(count);
+      for (size_t c = 0; c < count; ++c) {
+        residuals[c] =
+            pda_registration::shapedSquaredNorm(candidates.points[first + c] - x, n, inverse_kappa);
+      }
+      // With nu's statistic, as the E-step above computes it (the same form of the weights).
+      computeCandidateWeights(residuals.data(), count, nu, sigma_squared, posterior.data(),
+                              rho.data(), log_precision.data());
+      double w = 0.0;
+      Point mean = Point::Zero();
+      for (size_t c = 0; c < count; ++c) {
+        w += rho[c];
+        mean += rho[c] * candidates.points[first + c];
+      }
+      mean /= w;
+      double across = 0.0, along = 0.0;
+      for (size_t c = 0; c < count; ++c) {
+        double a = 0.0, b = 0.0;
+        pda_registration::splitSquaredResidual(candidates.points[first + c] - mean, n, &a, &b);
+        across += rho[c] * a;
+        along += rho[c] * b;
+      }
+      const double scale = w * 0.04;  // rho times the candidates' squared spread (0.2 m)
+      EXPECT_NEAR(reduced.weight[j], w, 1e-12 * w);
+      EXPECT_LT((reduced.target_mean[j] - mean).norm(), 1e-9);
+      EXPECT_NEAR(reduced.spread_across[j], across, 1e-12 * scale) << "nu " << nu << " j " << j;
+      EXPECT_NEAR(reduced.spread_along[j], along, 1e-12 * scale) << "nu " << nu << " j " << j;
+      // The identity itself, at a pose other than the E-step's.
+      const Point z = source[j] + Point(0.03, 0.01, -0.02);
+      double direct = 0.0;
+      for (size_t c = 0; c < count; ++c) {
+        direct += rho[c] * pda_registration::shapedSquaredNorm(candidates.points[first + c] - z, n,
+                                                               inverse_kappa);
+      }
+      const double from_reduced =
+          reduced.weight[j] *
+              pda_registration::shapedSquaredNorm(reduced.target_mean[j] - z, n, inverse_kappa) +
+          reduced.spread_across[j] + inverse_kappa * reduced.spread_along[j];
+      EXPECT_NEAR(from_reduced, direct, 1e-10 * direct);
+    }
+  }
 }
 
 // nu's ECM update (degrees_of_freedom.hpp).

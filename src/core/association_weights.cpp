@@ -45,7 +45,8 @@ void weighSourcePoints(const PointList& source, const CandidateSets& candidates,
   {
     // Per-candidate scratch: on the stack for the usual few candidates, else in vectors.
     constexpr size_t kOnStack = 32;
-    double stack[4 * kOnStack];
+    constexpr size_t kArrays = 6;
+    double stack[kArrays * kOnStack];
     std::vector<double> heap;
 #pragma omp for schedule(dynamic, 256)
     for (long long j = 0; j < static_cast<long long>(n); ++j) {
@@ -54,41 +55,51 @@ void weighSourcePoints(const PointList& source, const CandidateSets& candidates,
       const Point* y = &candidates.points[candidates.offsets[j]];
       double* residuals = stack;
       if (count > kOnStack) {
-        heap.resize(4 * count);
+        heap.resize(kArrays * count);
         residuals = heap.data();
       }
       double* posterior = residuals + count;
       double* rho = posterior + count;
       double* log_u = rho + count;
+      double* normal_component = log_u + count;    // n . r_i
+      double* squared = normal_component + count;  // |r_i|^2
       const Point x = T_target_source * source[j];
       const Point normal = shapes.normalAt(j);
       const double inverse_kappa = shapes.inverseKappaAt(j);
+      const bool has_normal = normal.squaredNorm() > 0.0;
+      // r_i = y_i - x in the point's shape (shapedSquaredNorm), keeping its parts for the spread.
       for (size_t i = 0; i < count; ++i) {
-        residuals[i] = shapedSquaredNorm(y[i] - x, normal, inverse_kappa);
+        const Point r = y[i] - x;
+        squared[i] = r.squaredNorm();
+        normal_component[i] = has_normal ? normal.dot(r) : 0.0;
+        residuals[i] = shapedSquaredNormFromParts(squared[i], normal_component[i], inverse_kappa);
       }
       // The normalisation, rho_i = P(a_i) u_i and the sums in one pass.
       const double inverse_total =
           1.0 / weighting.unnormalisedAs<kForm, kNuStatistic>(residuals, count, posterior, rho,
                                                               kNuStatistic ? log_u : nullptr);
       double w = 0.0, precision_term = 0.0;
-      Point mean = Point::Zero();
+      double sum_across = 0.0, sum_across_squared = 0.0, sum_squared = 0.0;
+      Point offset = Point::Zero();  // sum rho_i r_i
       for (size_t i = 0; i < count; ++i) {
         posterior[i] *= inverse_total;
         rho[i] *= posterior[i];  // eqs. 15, 21
         w += rho[i];
-        mean += rho[i] * y[i];
+        offset += rho[i] * (y[i] - x);
+        sum_across += rho[i] * normal_component[i];
+        sum_across_squared += rho[i] * normal_component[i] * normal_component[i];
+        sum_squared += rho[i] * squared[i];
         // P(a_i) (log u_i - u_i), with P(a_i) u_i = rho_i.
         if constexpr (kNuStatistic) precision_term += posterior[i] * log_u[i] - rho[i];
       }
       if (!(w > 0.0)) continue;
-      mean /= w;
-      double spread_across = 0.0, spread_along = 0.0;
-      for (size_t i = 0; i < count; ++i) {
-        double a = 0.0, b = 0.0;
-        splitSquaredResidual(y[i] - mean, normal, &a, &b);
-        spread_across += rho[i] * a;
-        spread_along += rho[i] * b;
-      }
+      // The spread about the weighted mean, sum rho_i |y_i - mean|^2 split across and along the
+      // surface, from the sums about x (the residuals are at most the radius: no cancellation
+      // worth the second pass over the candidates it saves).
+      const double spread_across = std::max(0.0, sum_across_squared - sum_across * sum_across / w);
+      const double spread_along =
+          std::max(0.0, sum_squared - offset.squaredNorm() / w - spread_across);
+      const Point mean = x + offset / w;
       if (second_moments) {
         // sum_i P(a_i) u_i^2 r_i r_i^T, u_i = rho_i / P(a_i): the association's and the
         // t-weight's share of the observed information (pose_covariance.hpp).

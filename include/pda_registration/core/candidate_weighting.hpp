@@ -31,6 +31,24 @@ class IntegerPower {
 
   double operator()(double base) const {
     double result = half_ ? std::sqrt(base) : 1.0;
+    // The usual nu (1 to 7) written out: the same products in the same order as the loop below,
+    // without its branch per bit (the E-step takes one power per candidate).
+    switch (whole_) {
+      case 0:
+        return result;
+      case 1:
+        return result * base;
+      case 2:
+        return result * (base * base);
+      case 3:
+        return (result * base) * (base * base);
+      case 4: {
+        const double square = base * base;
+        return result * (square * square);
+      }
+      default:
+        break;
+    }
     double square = base;
     for (int bits = whole_; bits > 0; bits >>= 1) {
       if (bits & 1) result *= square;

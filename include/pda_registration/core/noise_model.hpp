@@ -13,13 +13,18 @@
 
 namespace pda_registration {
 
+/// |r|^2_M from |r|^2 and the normal's component n . r (0 without a normal).
+inline double shapedSquaredNormFromParts(double squared, double normal_component,
+                                         double inverse_kappa) {
+  return inverse_kappa * squared + (1.0 - inverse_kappa) * normal_component * normal_component;
+}
+
 /// r^T M^-1 r.
 inline double shapedSquaredNorm(const Eigen::Vector3d& r, const Eigen::Vector3d& normal,
                                 double inverse_kappa) {
   const double squared = r.squaredNorm();
   if (!(normal.squaredNorm() > 0.0)) return inverse_kappa * squared;
-  const double along = normal.dot(r);
-  return inverse_kappa * squared + (1.0 - inverse_kappa) * along * along;
+  return shapedSquaredNormFromParts(squared, normal.dot(r), inverse_kappa);
 }
 
 /// M^-1 as a matrix.
