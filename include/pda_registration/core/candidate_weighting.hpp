@@ -31,7 +31,7 @@ class IntegerPower {
 
   double operator()(double base) const {
     double result = half_ ? std::sqrt(base) : 1.0;
-    // Exponents up to 4.5 (nu up to 6) written out: the same products in the same order as the loop,
+    // Exponents up to 4.5 (nu up to 6) written out: the loop's products in the loop's order,
     // without its branch per bit (the E-step takes one power per candidate).
     switch (whole_) {
       case 0:
