@@ -313,6 +313,8 @@ TEST(SourceBudget, UnbiasedSubsampleWithinBudget) {
       ASSERT_EQ(index.nearestWithinRadius(kept[i], 1, 1e-9, &found, &d), 1u);
     }
     EXPECT_EQ(applySourceBudget(cloud, budget), kept);
+    // A cloud of finite points is sampled in place: the same subsample as the filtered copy's.
+    EXPECT_EQ(applySourceBudget(finite, budget), kept);
   }
 }
 

@@ -4,6 +4,8 @@
 // point. Checked on real clouds against their ground truth, and for when the index is built.
 #include <gtest/gtest.h>
 
+#include <cmath>
+
 #include "pda_registration/core/error_metrics.hpp"
 #include "pda_registration/core/pda_registration.hpp"
 #include "pda_registration/core/perturbation.hpp"
@@ -91,6 +93,32 @@ TEST(TargetSubset, IndexedOnceForTheSameKindOfSource) {
   EXPECT_EQ(registration.targetIndexBuilds(), 2u) << "indexed by setTarget";
   ASSERT_NE(registration.target(), nullptr);
   EXPECT_LT(registration.target()->size(), kinect.target.size() / 2);
+}
+
+// A source beyond the budget is sampled straight from the input, non-finite points skipped: the
+// same alignment as the source without them, and they are counted as dropped.
+TEST(TargetSubset, BudgetedSourceWithNonFinitePointsAlignsAsWithout) {
+  const testing_support::SharedCase room = load("room_scan");
+  ASSERT_GT(room.source.size(), 3000u);
+  RegistrationParameters p;
+  p.max_source_points = 2000;
+  PointList with_gaps;
+  for (size_t i = 0; i < room.source.size(); ++i) {
+    if (i % 100 == 0) with_gaps.push_back(Point::Constant(std::nan("")));
+    with_gaps.push_back(room.source[i]);
+  }
+  const size_t gaps = with_gaps.size() - room.source.size();
+  const Eigen::Isometry3d seed = room.T_target_source * randomPerturbation(5.0, 0.25, 2);
+  PdaRegistration registration(p);
+  ASSERT_TRUE(registration.setTarget(room.target));
+  const RegistrationResult clean = registration.align(room.source, seed);
+  const RegistrationResult gapped = registration.align(with_gaps, seed);
+  ASSERT_TRUE(clean.converged) << clean.reason;
+  EXPECT_EQ(clean.source_points_used, 2000u);
+  EXPECT_EQ(gapped.source_points_used, 2000u);
+  EXPECT_EQ(gapped.source_points_dropped, gaps);
+  EXPECT_TRUE(gapped.T_target_source.isApprox(clean.T_target_source, 0.0));
+  EXPECT_LT(eq22(room, gapped), 0.03);
 }
 
 }  // namespace

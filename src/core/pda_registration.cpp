@@ -164,15 +164,24 @@ RegistrationResult PdaRegistration::alignUnchecked(const PointList& source_input
   }
 
   PointList& source = workspace_.source;
-  source = source_input;
   workspace_.search.forget();  // new points in the same memory, perhaps a new target
-  result.source_points_dropped = removeNonFinitePoints(&source);
-  if (p.source_voxel_size > 0.0) source = voxelDownsample(source, p.source_voxel_size);
-  bool budgeted_source = false;
-  if (p.max_source_points > 0) {
-    PointList budgeted = applySourceBudget(source, static_cast<size_t>(p.max_source_points));
-    budgeted_source = !budgeted.empty();
-    if (budgeted_source) source = std::move(budgeted);
+  const size_t budget = p.max_source_points > 0 ? static_cast<size_t>(p.max_source_points) : 0;
+  const size_t finite_points = countFinitePoints(source_input);
+  result.source_points_dropped = source_input.size() - finite_points;
+  // A source beyond the budget (and not voxelised first) is sampled straight from the input: the
+  // same subset as from a filtered copy, without copying a map of millions of points.
+  bool budgeted_source = budget > 0 && !(p.source_voxel_size > 0.0) && finite_points > budget;
+  if (budgeted_source) {
+    source = applySourceBudget(source_input, budget);
+  } else {
+    source = source_input;
+    removeNonFinitePoints(&source);
+    if (p.source_voxel_size > 0.0) source = voxelDownsample(source, p.source_voxel_size);
+    if (budget > 0) {
+      PointList budgeted = applySourceBudget(source, budget);
+      budgeted_source = !budgeted.empty();
+      if (budgeted_source) source = std::move(budgeted);
+    }
   }
   result.source_points_used = source.size();
   if (source.size() < static_cast<size_t>(p.min_correspondences)) {

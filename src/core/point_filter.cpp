@@ -17,6 +17,11 @@ size_t removeNonFinitePoints(PointList* points) {
   return before - points->size();
 }
 
+size_t countFinitePoints(const PointList& points) {
+  return static_cast<size_t>(
+      std::count_if(points.begin(), points.end(), [](const Point& p) { return p.allFinite(); }));
+}
+
 namespace {
 
 // The voxel filter's table: open addressing with linear probing (key + 1; 0 = empty), grown at
