@@ -1,16 +1,20 @@
 // The dense map's representative subset: the sample spacing of a cloud, the first point of each
 // voxel (a growing map's subset extended equals the whole map's), thinning only maps much finer
 // than the voxel, and the factory map thinned to its scan's spacing still registering within
-// 2 mm of the ground truth.
+// 2 mm of the ground truth; and the voxel filter (one mean per voxel) against a plain reference.
 #include "pda_registration/core/representative_subset.hpp"
 
 #include <gtest/gtest.h>
 
+#include <map>
+#include <random>
 #include <set>
+#include <tuple>
 
 #include "pda_registration/core/error_metrics.hpp"
 #include "pda_registration/core/pda_registration.hpp"
 #include "pda_registration/core/perturbation.hpp"
+#include "pda_registration/core/point_filter.hpp"
 #include "pda_registration/core/voxel_cell.hpp"
 #include "test_support/shared_data.hpp"
 
@@ -125,6 +129,45 @@ TEST(RepresentativeSubset, FactoryMapThinnedToItsScansSpacingRegistersWithin2mm)
     const PoseError e = poseError(factory.source, result.T_target_source, factory.T_target_source);
     EXPECT_LT(e.mean_distance, 0.002) << (target == whole ? "whole map" : "subset");
   }
+}
+
+// The voxel filter against a plain reference (a map of cells in first-seen order): one mean per
+// occupied voxel, summed in input order, whether the points come in runs of one voxel (pixel
+// order) or shuffled, and on both sides of the origin.
+TEST(VoxelDownsample, OneMeanPerVoxelInFirstSeenOrder) {
+  std::mt19937 random(7);
+  std::uniform_real_distribution<double> coordinate(-1.0, 1.0);
+  PointList runs;
+  for (int i = 0; i < 3000; ++i) {
+    const Point centre(coordinate(random), coordinate(random), coordinate(random));
+    for (int j = 0; j < 1 + i % 4; ++j) runs.push_back(centre + Point::Constant(0.001 * j));
+  }
+  PointList shuffled = runs;
+  std::shuffle(shuffled.begin(), shuffled.end(), random);
+  constexpr double kVoxel = 0.05;
+  for (const PointList* points : {&runs, &shuffled}) {
+    std::vector<std::tuple<int64_t, int64_t, int64_t>> order;
+    std::map<std::tuple<int64_t, int64_t, int64_t>, std::pair<Point, int>> cells;
+    for (const Point& p : *points) {
+      const VoxelCell c = voxelCellOf(p, 1.0 / kVoxel);
+      const auto key = std::make_tuple(c.x, c.y, c.z);
+      auto found = cells.find(key);
+      if (found == cells.end()) {
+        order.push_back(key);
+        cells.emplace(key, std::make_pair(p, 1));
+      } else {
+        found->second.first += p;
+        ++found->second.second;
+      }
+    }
+    const PointList means = voxelDownsample(*points, kVoxel);
+    ASSERT_EQ(means.size(), order.size());
+    for (size_t i = 0; i < order.size(); ++i) {
+      const std::pair<Point, int>& cell = cells.at(order[i]);
+      EXPECT_EQ(means[i], cell.first / cell.second) << "voxel " << i;
+    }
+  }
+  EXPECT_EQ(voxelDownsample(runs, 0.0), runs);  // no voxel: the input as it is
 }
 
 }  // namespace
