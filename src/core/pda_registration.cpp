@@ -172,7 +172,7 @@ RegistrationResult PdaRegistration::alignUnchecked(const PointList& source_input
   // same subset as from a filtered copy, without copying a map of millions of points.
   bool budgeted_source = budget > 0 && !(p.source_voxel_size > 0.0) && finite_points > budget;
   if (budgeted_source) {
-    source = applySourceBudget(source_input, budget);
+    source = applySourceBudget(source_input, budget, finite_points);
   } else {
     source = source_input;
     removeNonFinitePoints(&source);

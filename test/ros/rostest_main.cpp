@@ -13,8 +13,8 @@
 namespace {
 
 // A test process that dies of a signal (glibc aborts on a double free) leaves no gtest report:
-// its stack goes to stderr, which rostest keeps in the test's log (scripts/test prints the tail of
-// such a log), so that a crash seen once in many runs says where it happened.
+// its stack goes to stderr, which rostest prints to its console (run_tests.log, where scripts/test
+// finds and prints it), so that a crash seen once in many runs says where it happened.
 void printStackAndDie(int signal_number) {
   constexpr char kHeader[] = "\n[rostest_main] the test process received signal ";
   ssize_t ignored = write(STDERR_FILENO, kHeader, sizeof(kHeader) - 1);

@@ -15,4 +15,8 @@ namespace pda_registration {
 /// input as it is: no copy). Non-finite points are skipped.
 PointList applySourceBudget(const PointList& points, size_t max_points);
 
+/// The same, for a caller that has counted the finite points already (countFinitePoints): a
+/// 2M-point map is not read once more to count them again.
+PointList applySourceBudget(const PointList& points, size_t max_points, size_t finite_points);
+
 }  // namespace pda_registration
