@@ -9,6 +9,7 @@
 #include "pda_registration/core/degrees_of_freedom.hpp"
 #include "pda_registration/core/gauss_newton_solver.hpp"
 #include "pda_registration/core/noise_shapes.hpp"
+#include "pda_registration/core/run_extrapolation.hpp"
 
 namespace pda_registration {
 
@@ -74,8 +75,8 @@ double computeShapeInputs(const SurfaceNormalMap& normal_map, const PointList& s
 // One run: EM on the workspace's candidate sets (fixed during the run) until a step is below the
 // epsilons or max_em_iterations. Returns false when the M-step cannot solve.
 bool runEm(const PointList& source, const SurfaceNormalMap& normal_map,
-           const RegistrationParameters& p, RegistrationWorkspace* workspace, EmState* state,
-           bool* settled, int* em_iterations) {
+           const RegistrationParameters& p, const PoseStep& step_metric,
+           RegistrationWorkspace* workspace, EmState* state, bool* settled, int* em_iterations) {
   const bool estimate_sigma = p.sigma_mode == SigmaMode::kEstimated;
   const CandidateSets& candidates = workspace->candidates;
   // The normals go straight into the shapes, which keep them for every iteration of the run.
@@ -92,6 +93,12 @@ bool runEm(const PointList& source, const SurfaceNormalMap& normal_map,
   }
   workspace->e_step.nu_statistic = p.nu_mode == NuMode::kEstimated;
   *settled = false;
+  // On fixed candidate sets EM converges linearly, each step about half the one before (the
+  // room's scan on its 0.25-m map: 2.2, 1.1, 0.65, 0.40, 0.24 mm), so a run of five iterations
+  // ends well short of where it is going. Two steps that agree point at their tail: EM continues
+  // from there, and the step after it is usually below the epsilons (the same fixed point, a
+  // fifth fewer E-steps over the whole source on the thinned room).
+  RunExtrapolation extrapolation(step_metric);
   for (int iteration = 0; iteration < p.max_em_iterations; ++iteration) {
     makeNoiseShapes(normals, workspace->spread, state->sigma_squared, p, &workspace->shapes);
     computeWeightedCorrespondences(source, candidates, workspace->shapes, state->T, state->nu,
@@ -108,12 +115,14 @@ bool runEm(const PointList& source, const SurfaceNormalMap& normal_map,
       state->nu = updateDegreesOfFreedom(state->nu, correspondences.mean_log_u_minus_u, 3.0);
     }
     const Increment step = incrementBetween(state->T, T_next);
-    state->T = T_next;
     ++*em_iterations;
     if (isSmall(step, p)) {
+      state->T = T_next;
       *settled = true;
       break;
     }
+    state->T = extrapolation.next(state->T, T_next, p.translation_epsilon,
+                                  kExtrapolationSigmas * std::sqrt(state->sigma_squared));
   }
   return true;
 }

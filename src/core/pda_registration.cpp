@@ -43,9 +43,6 @@ double candidateRadius(const RegistrationParameters& p, double sigma_squared) {
   return std::min(p.radius, std::max(p.min_radius, 6.0 * std::sqrt(sigma_squared)));
 }
 
-// How far an extrapolated run may start beyond the last run's estimate, in sigmas.
-constexpr double kExtrapolationSigmas = 2.0;
-
 }  // namespace
 
 PdaRegistration::PdaRegistration(const RegistrationParameters& parameters)
@@ -279,7 +276,7 @@ RegistrationResult PdaRegistration::alignUnchecked(const PointList& source_input
     const Eigen::Isometry3d T_run_start = state.T;
     RegistrationParameters run_parameters = p;  // a few numbers: copied once a run
     run_parameters.nu_mode = nuModeOfRun(p, stage == Stage::kRefine);
-    if (!runEm(active, *normal_map, run_parameters, &workspace_, &state, &em_settled,
+    if (!runEm(active, *normal_map, run_parameters, step_metric, &workspace_, &state, &em_settled,
                &result.em_iterations)) {
       result.reason = "M-step failed: the weighted correspondences do not constrain the pose";
       return result;

@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "pda_registration/core/point_list.hpp"
+#include "pda_registration/core/pose_step.hpp"
 #include "pda_registration/core/registration_parameters.hpp"
 #include "pda_registration/core/registration_workspace.hpp"
 #include "pda_registration/core/surface_normals.hpp"
@@ -32,11 +33,12 @@ struct EmState {
 };
 
 /// One run: EM on the workspace's candidate sets (fixed during the run) until a step is below
-/// the epsilons (*settled = true) or max_em_iterations. Counts iterations into *em_iterations.
-/// Returns false when the M-step cannot solve.
+/// the epsilons (*settled = true) or max_em_iterations. Two successive steps that agree are
+/// extrapolated to their tail (run_extrapolation.hpp), compared in `step_metric`. Counts
+/// iterations into *em_iterations. Returns false when the M-step cannot solve.
 bool runEm(const PointList& source, const SurfaceNormalMap& normal_map,
-           const RegistrationParameters& p, RegistrationWorkspace* workspace, EmState* state,
-           bool* settled, int* em_iterations);
+           const RegistrationParameters& p, const PoseStep& step_metric,
+           RegistrationWorkspace* workspace, EmState* state, bool* settled, int* em_iterations);
 
 /// The target surface normal at every moved source point (zero where unknown). With
 /// `only_with_candidates`, only at the points that have candidates there (zero elsewhere): a

@@ -15,6 +15,10 @@
 
 namespace pda_registration {
 
+/// How far an extrapolation may go beyond the last estimate, in sigmas: about as far as the
+/// candidate sets (or, within a run, the E-step's weights) still describe the clouds.
+constexpr double kExtrapolationSigmas = 2.0;
+
 class RunExtrapolation {
  public:
   /// Steps are compared in `metric`: rotations and translations weigh as the displacements
