@@ -10,11 +10,15 @@
 #include <vector>
 
 #include "pda_registration/core/ceres_solver.hpp"
+#include "pda_registration/core/candidate_sets.hpp"
 #include "pda_registration/core/closed_form_solver.hpp"
+#include "pda_registration/core/em_run.hpp"
 #include "pda_registration/core/gauss_newton_solver.hpp"
+#include "pda_registration/core/noise_shapes.hpp"
 #include "pda_registration/core/pose_covariance.hpp"
 #include "pda_registration/core/run_extrapolation.hpp"
 #include "pda_registration/core/run_rest.hpp"
+#include "pda_registration/core/target_index.hpp"
 
 namespace pda_registration {
 namespace {
@@ -263,4 +267,78 @@ TEST(RunRest, ASlideIsNotAtRestHoweverSmallItsSteps) {
   }
   EXPECT_EQ(restAt(xs, ys), 0);
   EXPECT_EQ(restAt(zig_xs, zig_ys), 0);
+}
+
+// EM inside one run (em_run.hpp) takes the same tail: on fixed candidate sets it must end where
+// plain EM converges, in fewer iterations. Plain EM is written out here from the E-step and the
+// Gauss-Newton M-step; sigma and nu are fixed, so that only the pose iterates.
+namespace {
+// Three walls of a room corner and a sloped roof, sampled every `spacing` from `offset`.
+pda_registration::PointList cornerScene(double spacing, double offset) {
+  pda_registration::PointList points;
+  for (double a = offset; a < 2.0; a += spacing) {
+    for (double b = offset; b < 2.0; b += spacing) {
+      points.emplace_back(0.0, a, b);
+      points.emplace_back(a, 0.0, b);
+      points.emplace_back(a, b, 0.0);
+      points.emplace_back(a, b, 2.0 + 0.3 * a);
+    }
+  }
+  return points;
+}
+}  // namespace
+
+TEST(EmRun, ExtrapolatedStepsEndWherePlainEmConvergesInFewerIterations) {
+  using namespace pda_registration;
+  const TargetIndex target(cornerScene(0.05, 0.0));
+  const PointList source = cornerScene(0.1, 0.025);  // other samples of the same surfaces
+  Eigen::Isometry3d start = Eigen::Isometry3d::Identity();
+  start.linear() = Eigen::AngleAxisd(0.02, Eigen::Vector3d(1, 2, 3).normalized()).matrix();
+  start.translation() = Eigen::Vector3d(0.03, -0.02, 0.01);
+
+  RegistrationParameters p;
+  p.surface_anisotropy = 1.0;  // the paper's isotropic noise: no normals needed
+  p.sigma_mode = SigmaMode::kFixed;
+  p.fixed_sigma = 0.03;
+  p.nu_mode = NuMode::kFixed;
+  p.translation_epsilon = 1e-7;
+  p.rotation_epsilon = 1e-7;
+  p.max_em_iterations = 500;
+  const double sigma_squared = p.fixed_sigma * p.fixed_sigma;
+  const CandidateSets candidates = findCandidateSets(target, source, start, p.k, p.radius, 1);
+
+  // Plain EM: iterations until a step is below the epsilons, then on to its limit.
+  NoiseShapes shapes;
+  makeNoiseShapes({}, {}, sigma_squared, p, &shapes);
+  EStepBuffers buffers;
+  WeightedCorrespondences correspondences;
+  Eigen::Isometry3d plain = start;
+  int plain_iterations = 0;
+  for (int iteration = 1; iteration <= 2000; ++iteration) {
+    computeWeightedCorrespondences(source, candidates, shapes, plain, p.nu, sigma_squared, 1,
+                                   &buffers, &correspondences);
+    Eigen::Isometry3d next = plain;
+    ASSERT_TRUE(solveGaussNewton(correspondences, 1, 0.0, 0.0, &next));
+    const Increment step = incrementBetween(plain, next);
+    plain = next;
+    if (plain_iterations == 0 && isSmall(step, p)) plain_iterations = iteration;
+    if (step.translation < 1e-13 && step.rotation < 1e-13) break;
+  }
+  ASSERT_GT(plain_iterations, 10) << "the test needs a slowly converging run";
+
+  RegistrationWorkspace workspace;
+  workspace.candidates = candidates;
+  EmState state;
+  state.T = start;
+  state.nu = p.nu;
+  state.sigma_squared = sigma_squared;
+  bool settled = false;
+  int iterations = 0;
+  ASSERT_TRUE(runEm(source, SurfaceNormalMap(), p, PoseStep::over(source), &workspace, &state,
+                    &settled, &iterations));
+  EXPECT_TRUE(settled);
+  EXPECT_LT(iterations, plain_iterations * 2 / 3) << "plain EM: " << plain_iterations;
+  const Increment off = incrementBetween(plain, state.T);
+  EXPECT_LT(off.translation, 1e-6);
+  EXPECT_LT(off.rotation, 1e-6);
 }
