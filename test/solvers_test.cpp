@@ -3,14 +3,13 @@
 // extrapolation of the runs that the solver's steps feed.
 #include <gtest/gtest.h>
 
-#include <limits>
-
 #include <Eigen/Eigenvalues>
+#include <limits>
 #include <random>
 #include <vector>
 
-#include "pda_registration/core/ceres_solver.hpp"
 #include "pda_registration/core/candidate_sets.hpp"
+#include "pda_registration/core/ceres_solver.hpp"
 #include "pda_registration/core/closed_form_solver.hpp"
 #include "pda_registration/core/em_run.hpp"
 #include "pda_registration/core/gauss_newton_solver.hpp"
