@@ -333,8 +333,9 @@ TEST(EmRun, ExtrapolatedStepsEndWherePlainEmConvergesInFewerIterations) {
   state.sigma_squared = sigma_squared;
   bool settled = false;
   int iterations = 0;
-  ASSERT_TRUE(runEm(source, SurfaceNormalMap(), p, PoseStep::over(source), &workspace, &state,
-                    &settled, &iterations));
+  const PoseStep step_metric = PoseStep::over(source);
+  ASSERT_TRUE(runEm(source, SurfaceNormalMap(), p, &step_metric, &workspace, &state, &settled,
+                    &iterations));
   EXPECT_TRUE(settled);
   EXPECT_LT(iterations, plain_iterations * 2 / 3) << "plain EM: " << plain_iterations;
   const Increment off = incrementBetween(plain, state.T);

@@ -75,7 +75,7 @@ double computeShapeInputs(const SurfaceNormalMap& normal_map, const PointList& s
 // One run: EM on the workspace's candidate sets (fixed during the run) until a step is below the
 // epsilons or max_em_iterations. Returns false when the M-step cannot solve.
 bool runEm(const PointList& source, const SurfaceNormalMap& normal_map,
-           const RegistrationParameters& p, const PoseStep& step_metric,
+           const RegistrationParameters& p, const PoseStep* step_metric,
            RegistrationWorkspace* workspace, EmState* state, bool* settled, int* em_iterations) {
   const bool estimate_sigma = p.sigma_mode == SigmaMode::kEstimated;
   const CandidateSets& candidates = workspace->candidates;
@@ -98,7 +98,7 @@ bool runEm(const PointList& source, const SurfaceNormalMap& normal_map,
   // ends well short of where it is going. Two steps that agree point at their tail: EM continues
   // from there, and the step after it is usually below the epsilons (the same fixed point, a
   // fifth fewer E-steps over the whole source on the thinned room).
-  RunExtrapolation extrapolation(step_metric);
+  RunExtrapolation extrapolation(step_metric ? *step_metric : PoseStep(Point::Zero(), 1.0));
   for (int iteration = 0; iteration < p.max_em_iterations; ++iteration) {
     makeNoiseShapes(normals, workspace->spread, state->sigma_squared, p, &workspace->shapes);
     computeWeightedCorrespondences(source, candidates, workspace->shapes, state->T, state->nu,
@@ -121,8 +121,10 @@ bool runEm(const PointList& source, const SurfaceNormalMap& normal_map,
       *settled = true;
       break;
     }
-    state->T = extrapolation.next(state->T, T_next, p.translation_epsilon,
-                                  kExtrapolationSigmas * std::sqrt(state->sigma_squared));
+    state->T = step_metric
+                   ? extrapolation.next(state->T, T_next, p.translation_epsilon,
+                                        kExtrapolationSigmas * std::sqrt(state->sigma_squared))
+                   : T_next;
   }
   return true;
 }

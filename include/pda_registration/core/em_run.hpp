@@ -33,11 +33,11 @@ struct EmState {
 };
 
 /// One run: EM on the workspace's candidate sets (fixed during the run) until a step is below
-/// the epsilons (*settled = true) or max_em_iterations. Two successive steps that agree are
-/// extrapolated to their tail (run_extrapolation.hpp), compared in `step_metric`. Counts
-/// iterations into *em_iterations. Returns false when the M-step cannot solve.
+/// the epsilons (*settled = true) or max_em_iterations. With a `step_metric`, two successive
+/// steps that agree are extrapolated to their tail (run_extrapolation.hpp), compared in it; null:
+/// plain EM. Counts iterations into *em_iterations. Returns false when the M-step cannot solve.
 bool runEm(const PointList& source, const SurfaceNormalMap& normal_map,
-           const RegistrationParameters& p, const PoseStep& step_metric,
+           const RegistrationParameters& p, const PoseStep* step_metric,
            RegistrationWorkspace* workspace, EmState* state, bool* settled, int* em_iterations);
 
 /// The target surface normal at every moved source point (zero where unknown). With
