@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <optional>
 
 #include "pda_registration/core/association_weights.hpp"
 #include "pda_registration/core/ceres_solver.hpp"
@@ -98,7 +99,8 @@ bool runEm(const PointList& source, const SurfaceNormalMap& normal_map,
   // ends well short of where it is going. Two steps that agree point at their tail: EM continues
   // from there, and the step after it is usually below the epsilons (the same fixed point, a
   // fifth fewer E-steps over the whole source on the thinned room).
-  RunExtrapolation extrapolation(step_metric ? *step_metric : PoseStep(Point::Zero(), 1.0));
+  std::optional<RunExtrapolation> extrapolation;
+  if (step_metric) extrapolation.emplace(*step_metric);
   for (int iteration = 0; iteration < p.max_em_iterations; ++iteration) {
     makeNoiseShapes(normals, workspace->spread, state->sigma_squared, p, &workspace->shapes);
     computeWeightedCorrespondences(source, candidates, workspace->shapes, state->T, state->nu,
@@ -121,9 +123,9 @@ bool runEm(const PointList& source, const SurfaceNormalMap& normal_map,
       *settled = true;
       break;
     }
-    state->T = step_metric
-                   ? extrapolation.next(state->T, T_next, p.translation_epsilon,
-                                        kExtrapolationSigmas * std::sqrt(state->sigma_squared))
+    state->T = extrapolation
+                   ? extrapolation->next(state->T, T_next, p.translation_epsilon,
+                                         kExtrapolationSigmas * std::sqrt(state->sigma_squared))
                    : T_next;
   }
   return true;
