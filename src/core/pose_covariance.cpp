@@ -3,7 +3,7 @@
 #include <Eigen/Eigenvalues>
 #include <algorithm>
 #include <cmath>
-#include <unordered_map>
+#include <utility>
 #include <vector>
 
 #include "pda_registration/core/map_scale_spread.hpp"
@@ -32,45 +32,69 @@ constexpr double kCoarsestEdge = 0.25;
 // degree of freedom (3.84) fired on white noise in 35 of 40 draws of a room.
 constexpr double kHalvesSignificance = 12.59;
 
-// Scores summed per grid cell. Cells keep their coordinates beside the key for coarsening and
-// for finding their neighbours (the grid spans at most kFinestDivisions cells per axis, so keys
-// never wrap onto each other).
+// Scores summed per grid cell, the cells in key order. The grid hangs on the overlap's corner, so
+// coordinates are never negative and never reach 2^21 (at most kFinestDivisions per axis): key
+// order is the lexicographic order of (x, y, z), and no two cells share a key.
 struct CellScore {
+  uint64_t key = 0;
   VoxelCell cell;
   Vector6d score = Vector6d::Zero();
 };
-using CellScores = std::unordered_map<uint64_t, CellScore>;
+using CellScores = std::vector<CellScore>;
 
-void addScore(const VoxelCell& cell, const Vector6d& score, CellScores* cells) {
-  CellScore& entry = (*cells)[voxelCellKey(cell)];
-  entry.cell = cell;
-  entry.score += score;
+// The scores summed per cell (each score in `cells[i]`). Sorted rather than hashed: the
+// neighbour sums below then walk the cells in order, without a lookup per neighbour.
+CellScores sumPerCell(const std::vector<VoxelCell>& cells, const std::vector<Vector6d>& scores) {
+  std::vector<std::pair<uint64_t, uint32_t>> order(cells.size());
+  for (size_t i = 0; i < cells.size(); ++i) {
+    order[i] = {voxelCellKey(cells[i]), static_cast<uint32_t>(i)};
+  }
+  std::sort(order.begin(), order.end());
+  CellScores summed;
+  for (const auto& [key, i] : order) {
+    if (summed.empty() || summed.back().key != key)
+      summed.push_back({key, cells[i], Vector6d::Zero()});
+    summed.back().score += scores[i];
+  }
+  return summed;
 }
 
 // The same scores summed over cells twice as large along each axis.
 CellScores coarsen(const CellScores& fine) {
-  CellScores coarse;
-  for (const auto& entry : fine) addScore(parentCell(entry.second.cell), entry.second.score, &coarse);
-  return coarse;
+  std::vector<VoxelCell> parents(fine.size());
+  std::vector<Vector6d> scores(fine.size());
+  for (size_t i = 0; i < fine.size(); ++i) {
+    parents[i] = parentCell(fine[i].cell);
+    scores[i] = fine[i].score;
+  }
+  return sumPerCell(parents, scores);
 }
 
 // sum g_i g_j^T over the pairs of points whose cells touch (the 27 cells around a cell, itself
 // included): a spatial HAC's middle term with a box kernel about 1.5 cells wide. Summed per cell,
-// so it costs one pass over the cells and 27 lookups each, not a pass over the pairs of points.
+// so it costs one pass over the cells, not a pass over the pairs of points. The neighbours of a
+// cell lie in 9 rows (dx, dy) of up to 3 consecutive keys (z - 1 .. z + 1); each row has a cursor
+// that only moves forward, because the rows' first keys grow with the cell's key.
 Matrix6d neighbourScoreSum(const CellScores& cells) {
   Matrix6d sum = Matrix6d::Zero();
-  for (const auto& entry : cells) {
-    const VoxelCell& c = entry.second.cell;
+  size_t cursors[9] = {0, 0, 0, 0, 0, 0, 0, 0, 0};
+  for (const CellScore& entry : cells) {
+    const VoxelCell& c = entry.cell;
     Vector6d nearby = Vector6d::Zero();
+    size_t* cursor = cursors;
     for (int64_t dx = -1; dx <= 1; ++dx) {
-      for (int64_t dy = -1; dy <= 1; ++dy) {
-        for (int64_t dz = -1; dz <= 1; ++dz) {
-          const auto found = cells.find(voxelCellKey({c.x + dx, c.y + dy, c.z + dz}));
-          if (found != cells.end()) nearby += found->second.score;
+      for (int64_t dy = -1; dy <= 1; ++dy, ++cursor) {
+        const VoxelCell first{c.x + dx, c.y + dy, std::max<int64_t>(c.z - 1, 0)};
+        if (first.x < 0 || first.y < 0) continue;
+        const uint64_t from = voxelCellKey(first);
+        const uint64_t to = voxelCellKey({first.x, first.y, c.z + 1});
+        while (*cursor < cells.size() && cells[*cursor].key < from) ++*cursor;
+        for (size_t i = *cursor; i < cells.size() && cells[i].key <= to; ++i) {
+          nearby += cells[i].score;
         }
       }
     }
-    sum.noalias() += entry.second.score * nearby.transpose();
+    sum.noalias() += entry.score * nearby.transpose();
   }
   return 0.5 * (sum + sum.transpose());
 }
@@ -136,7 +160,10 @@ bool computePoseCovariance(const WeightedCorrespondences& correspondences,
   Matrix6d observed = Matrix6d::Zero();
   const bool have_moments = correspondences.second_moment.size() == correspondences.size();
   const double t_factor = std::isfinite(nu) ? 1.0 + 2.0 / (nu + 3.0) : 1.0;
-  CellScores cells;
+  std::vector<VoxelCell> point_cells;
+  std::vector<Vector6d> point_scores;
+  point_cells.reserve(finest_edge > 0.0 ? correspondences.size() : 0);
+  point_scores.reserve(point_cells.capacity());
   OctantPartition octants;
   for (size_t i = 0; i < correspondences.size(); ++i) {
     const PoseJacobian jacobian = poseJacobian(moved[i] - centre);
@@ -173,7 +200,8 @@ bool computePoseCovariance(const WeightedCorrespondences& correspondences,
     }
     // The grid hangs on the overlap's corner: cells 0-128 per axis wherever the map lies.
     if (finest_edge > 0.0) {
-      addScore(voxelCellOf(moved[i] - overlap.min(), 1.0 / finest_edge), score, &cells);
+      point_cells.push_back(voxelCellOf(moved[i] - overlap.min(), 1.0 / finest_edge));
+      point_scores.push_back(score);
     }
     OctantSums& octant = octants[octantOf(moved[i], centre)];
     octant.hessian.noalias() += point_hessian;
@@ -203,6 +231,7 @@ bool computePoseCovariance(const WeightedCorrespondences& correspondences,
   // and falls back towards zero beyond (at the optimum the scores sum to zero). The term is the
   // upper bound of S(L) over a doubling ladder of L, from the finest grid to the overlap's size.
   const double radius = 0.5 * overlap.diagonal().norm();
+  CellScores cells = sumPerCell(point_cells, point_scores);
   Matrix6d structure = Matrix6d::Zero();
   size_t cell_count = 0;
   double cell_edge = 0.0, largest = 0.0;
