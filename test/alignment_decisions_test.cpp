@@ -1,6 +1,7 @@
 // What a running system decides around each alignment, ROS-free: where it starts (the warm
 // start's correction, and the retry from the seed when a warm attempt is rejected) and whether
-// its result may replace the last good estimate (the acceptance gate).
+// its result may replace the last good estimate (the acceptance gate), and when a converged result
+// is tried again from a second start.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -8,6 +9,8 @@
 #include <vector>
 
 #include "pda_registration/core/alignment_gate.hpp"
+#include "pda_registration/core/degrees_of_freedom.hpp"
+#include "pda_registration/core/second_start.hpp"
 #include "pda_registration/core/warm_start.hpp"
 
 namespace pda_registration {
@@ -155,6 +158,70 @@ TEST(WarmStart, AWarmAttemptOutOfTimeIsNotRetried) {
     return AttemptOutcome::kOutOfTime;
   }));
   EXPECT_EQ(attempts, 1);
+}
+
+Eigen::Isometry3d yawed(double degrees, const Eigen::Vector3d& translation) {
+  Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
+  T.linear() =
+      Eigen::AngleAxisd(degrees * M_PI / 180.0, Eigen::Vector3d::UnitZ()).toRotationMatrix();
+  T.translation() = translation;
+  return T;
+}
+
+TEST(SecondStart, KeepsTheFoundRotationWithTheCentroidWhereTheSeedPutIt) {
+  const Point centroid(3.0, 1.0, 0.5);
+  const Eigen::Isometry3d seed = yawed(5.0, Eigen::Vector3d(2.0, 0.0, 0.0));
+  const Eigen::Isometry3d found = yawed(25.0, Eigen::Vector3d(3.4, -0.8, 0.1));
+  const Eigen::Isometry3d start = secondStartPose(found, seed, centroid);
+  EXPECT_TRUE(start.linear().isApprox(found.linear()));
+  EXPECT_LT((start * centroid - seed * centroid).norm(), 1e-12);
+}
+
+TEST(SecondStart, OnlyARestWithNuAtItsFloorThatMovedTheCentroidBeyondTheRadius) {
+  const Point centroid(3.0, 1.0, 0.5);
+  const Eigen::Isometry3d seed = yawed(5.0, Eigen::Vector3d(2.0, 0.0, 0.0));
+  RegistrationResult first;
+  first.converged = true;
+  first.nu = kMinDegreesOfFreedom;
+  first.T_target_source = yawed(25.0, Eigen::Vector3d(3.4, -0.8, 0.1));
+  const RegistrationParameters defaults;
+  EXPECT_TRUE(secondStartWarranted(first, defaults, seed, centroid, 0.25));
+  // The centroid stayed within the final search radius: the same basin.
+  EXPECT_FALSE(secondStartWarranted(first, defaults, seed, centroid, 10.0));
+  RegistrationResult heavy_tailed_but_fitting = first;
+  heavy_tailed_but_fitting.nu = 1.5;
+  EXPECT_FALSE(secondStartWarranted(heavy_tailed_but_fitting, defaults, seed, centroid, 0.25));
+  RegistrationResult failed = first;
+  failed.converged = false;
+  EXPECT_FALSE(secondStartWarranted(failed, defaults, seed, centroid, 0.25));
+  RegistrationParameters fixed_nu = defaults;
+  fixed_nu.nu_mode = NuMode::kFixed;
+  fixed_nu.nu = kMinDegreesOfFreedom;
+  EXPECT_FALSE(secondStartWarranted(first, fixed_nu, seed, centroid, 0.25));
+}
+
+TEST(SecondStart, TheFirstBasinHoldsPosesThatMoveNoPointByTheRadius) {
+  FirstResultBasin basin;
+  basin.T_found = yawed(25.0, Eigen::Vector3d(1.5, -0.8, 0.1));
+  basin.centroid = Point(3.0, 0.0, 0.0);
+  basin.source_radius = 4.0;
+  basin.final_radius = 0.25;
+  EXPECT_TRUE(basin.contains(basin.T_found));
+  EXPECT_TRUE(basin.contains(yawed(25.0, Eigen::Vector3d(1.6, -0.8, 0.1))));
+  EXPECT_FALSE(basin.contains(yawed(25.0, Eigen::Vector3d(1.8, -0.8, 0.1))));
+  // 4 degrees turn the points 4 m from the centroid by 0.28 m.
+  EXPECT_FALSE(basin.contains(yawed(29.0, Eigen::Vector3d(1.5, -0.8, 0.1))));
+}
+
+TEST(SecondStart, ReplacesTheFirstOnlyWhenConvergedAndBetterSupported) {
+  RegistrationResult first, second;
+  first.converged = second.converged = true;
+  first.support_fraction = 0.51;
+  second.support_fraction = 0.63;
+  EXPECT_TRUE(secondStartIsBetter(first, second));
+  EXPECT_FALSE(secondStartIsBetter(second, first));
+  second.converged = false;
+  EXPECT_FALSE(secondStartIsBetter(first, second));
 }
 
 }  // namespace

@@ -17,6 +17,7 @@
 #include "pda_registration/core/representative_subset.hpp"
 #include "pda_registration/core/run_extrapolation.hpp"
 #include "pda_registration/core/run_rest.hpp"
+#include "pda_registration/core/second_start.hpp"
 #include "pda_registration/core/source_budget.hpp"
 
 namespace pda_registration {
@@ -104,6 +105,7 @@ RegistrationResult PdaRegistration::align(const PointList& source,
   RegistrationResult result;
   try {
     result = alignUnchecked(source, T_target_source_initial, associations);
+    trySecondStart(source, T_target_source_initial, start, &result, associations);
     // PDA's natural direction failed and the source is the denser cloud: its model may hold the
     // other way round (alignment_direction.hpp). Kept only if that run converges. Only a whole
     // target is considered (one large enough to crop is a dense map already).
@@ -135,9 +137,45 @@ RegistrationResult PdaRegistration::align(const PointList& source,
   return result;
 }
 
+void PdaRegistration::trySecondStart(const PointList& source, const Eigen::Isometry3d& T_initial,
+                                     std::chrono::steady_clock::time_point started,
+                                     RegistrationResult* result, Associations* associations) {
+  const PointList& used = workspace_.source;  // the points the first alignment ran on
+  if (used.empty()) return;
+  Point centroid = Point::Zero();
+  for (const Point& point : used) centroid += point;
+  centroid /= static_cast<double>(used.size());
+  FirstResultBasin basin;
+  basin.T_found = result->T_target_source;
+  basin.centroid = centroid;
+  basin.final_radius = candidateRadius(parameters_, result->sigma * result->sigma);
+  if (!secondStartWarranted(*result, parameters_, T_initial, centroid, basin.final_radius)) return;
+  for (const Point& point : used) {
+    basin.source_radius = std::max(basin.source_radius, (point - centroid).norm());
+  }
+  // Within the alignment's deadline: the second start gets what is left of it.
+  const double time_limit_ms = parameters_.time_limit_ms;
+  if (time_limit_ms > 0.0) {
+    const double left_ms = time_limit_ms - std::chrono::duration<double, std::milli>(
+                                               std::chrono::steady_clock::now() - started)
+                                               .count();
+    if (!(left_ms > 0.0)) return;
+    parameters_.time_limit_ms = left_ms;
+  }
+  Associations second_associations;
+  RegistrationResult second =
+      alignUnchecked(source, secondStartPose(result->T_target_source, T_initial, centroid),
+                     associations ? &second_associations : nullptr, &basin);
+  parameters_.time_limit_ms = time_limit_ms;
+  if (!secondStartIsBetter(*result, second)) return;
+  *result = std::move(second);
+  if (associations) *associations = std::move(second_associations);
+}
+
 RegistrationResult PdaRegistration::alignUnchecked(const PointList& source_input,
                                                    const Eigen::Isometry3d& T_target_source_initial,
-                                                   Associations* associations) {
+                                                   Associations* associations,
+                                                   const FirstResultBasin* abandon_in) {
   const auto started = std::chrono::steady_clock::now();
   const RegistrationParameters& p = parameters_;
   RegistrationResult result;
@@ -303,6 +341,10 @@ RegistrationResult PdaRegistration::alignUnchecked(const PointList& source_input
     if (!stage_done && p.max_runs > 1) {
       state.T = extrapolation.next(T_run_start, state.T, stage_scale * p.translation_epsilon,
                                    kExtrapolationSigmas * std::sqrt(state.sigma_squared));
+    }
+    if (abandon_in && abandon_in->contains(state.T)) {
+      result.reason = "second start: back in the first result's basin";
+      return result;
     }
     // An approach that comes to rest with residuals as wide as the search is not at a fit (the
     // "unresolved" verdict below), and the whole source would only wander on from there: stop,

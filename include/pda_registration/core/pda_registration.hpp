@@ -10,6 +10,7 @@
 // align() never throws; a failure is a result with converged = false and a reason.
 
 #include <Eigen/Geometry>
+#include <chrono>
 #include <memory>
 
 #include "pda_registration/core/associations.hpp"
@@ -17,6 +18,7 @@
 #include "pda_registration/core/registration_parameters.hpp"
 #include "pda_registration/core/registration_result.hpp"
 #include "pda_registration/core/registration_workspace.hpp"
+#include "pda_registration/core/second_start.hpp"
 #include "pda_registration/core/surface_normals.hpp"
 #include "pda_registration/core/target_index.hpp"
 #include "pda_registration/core/target_map.hpp"
@@ -59,9 +61,15 @@ class PdaRegistration {
 
  private:
   TargetIndexing indexing() const;
+  /// `abandon_in`: a second start stops (not converged) once it enters the first's basin.
   RegistrationResult alignUnchecked(const PointList& source,
                                     const Eigen::Isometry3d& T_target_source_initial,
-                                    Associations* associations);
+                                    Associations* associations,
+                                    const FirstResultBasin* abandon_in = nullptr);
+  /// A second alignment from the rotation the first found, kept if better (second_start.hpp).
+  void trySecondStart(const PointList& source, const Eigen::Isometry3d& T_initial,
+                      std::chrono::steady_clock::time_point started, RegistrationResult* result,
+                      Associations* associations);
   /// The target aligned onto `source` (the denser cloud), answered in the usual direction.
   RegistrationResult alignSwapped(const PointList& source,
                                   const Eigen::Isometry3d& T_target_source_initial,

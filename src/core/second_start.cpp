@@ -1,0 +1,38 @@
+#include "pda_registration/core/second_start.hpp"
+
+#include <cmath>
+
+#include "pda_registration/core/degrees_of_freedom.hpp"
+
+namespace pda_registration {
+
+Eigen::Isometry3d secondStartPose(const Eigen::Isometry3d& T_found,
+                                  const Eigen::Isometry3d& T_initial, const Point& centroid) {
+  Eigen::Isometry3d start = Eigen::Isometry3d::Identity();
+  start.linear() = T_found.linear();
+  start.translation() = T_initial * centroid - T_found.linear() * centroid;
+  return start;
+}
+
+bool secondStartWarranted(const RegistrationResult& first, const RegistrationParameters& p,
+                          const Eigen::Isometry3d& T_initial, const Point& centroid,
+                          double final_radius) {
+  if (!first.converged || p.nu_mode == NuMode::kFixed || p.max_runs <= 1) return false;
+  // The ECM update clamps nu to the floor: an estimate there is exactly the floor.
+  if (!(first.nu <= kMinDegreesOfFreedom)) return false;
+  const double centroid_moved = (first.T_target_source * centroid - T_initial * centroid).norm();
+  return centroid_moved > final_radius;
+}
+
+bool FirstResultBasin::contains(const Eigen::Isometry3d& T) const {
+  const double shift = (T * centroid - T_found * centroid).norm();
+  const double angle = Eigen::AngleAxisd(T.linear() * T_found.linear().transpose()).angle();
+  return shift + std::abs(angle) * source_radius < final_radius;
+}
+
+bool secondStartIsBetter(const RegistrationResult& first, const RegistrationResult& second) {
+  return second.converged && !second.out_of_time &&
+         second.support_fraction > first.support_fraction;
+}
+
+}  // namespace pda_registration
