@@ -200,17 +200,23 @@ TEST(SecondStart, OnlyARestWithNuAtItsFloorThatMovedTheCentroidBeyondTheRadius) 
   EXPECT_FALSE(secondStartWarranted(first, fixed_nu, seed, centroid, 0.25));
 }
 
-TEST(SecondStart, TheFirstBasinHoldsPosesThatMoveNoPointByTheRadius) {
+TEST(SecondStart, TheFirstBasinHoldsPosesThatMoveThePointsByLessThanTheRadiusInRms) {
   FirstResultBasin basin;
   basin.T_found = yawed(25.0, Eigen::Vector3d(1.5, -0.8, 0.1));
   basin.centroid = Point(3.0, 0.0, 0.0);
-  basin.source_radius = 4.0;
+  basin.source_rms_radius = 4.0;
   basin.final_radius = 0.25;
   EXPECT_TRUE(basin.contains(basin.T_found));
   EXPECT_TRUE(basin.contains(yawed(25.0, Eigen::Vector3d(1.6, -0.8, 0.1))));
   EXPECT_FALSE(basin.contains(yawed(25.0, Eigen::Vector3d(1.8, -0.8, 0.1))));
-  // 4 degrees turn the points 4 m from the centroid by 0.28 m.
+  // 4 degrees turn the points, 4 m from the centroid in RMS, by 0.28 m in RMS.
   EXPECT_FALSE(basin.contains(yawed(29.0, Eigen::Vector3d(1.5, -0.8, 0.1))));
+  // The centroid 0.15 m further and 2 degrees more (0.14 m at 4 m) add in quadrature to 0.205 m:
+  // inside, where their sum (0.29 m) is not.
+  Eigen::Isometry3d turned = yawed(27.0, Eigen::Vector3d::Zero());
+  turned.translation() = basin.T_found * basin.centroid + Eigen::Vector3d(0.15, 0.0, 0.0) -
+                         turned.linear() * basin.centroid;
+  EXPECT_TRUE(basin.contains(turned));
 }
 
 TEST(SecondStart, ReplacesTheFirstOnlyWhenConvergedAndBetterSupported) {

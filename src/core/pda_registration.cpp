@@ -150,9 +150,8 @@ void PdaRegistration::trySecondStart(const PointList& source, const Eigen::Isome
   basin.centroid = centroid;
   basin.final_radius = candidateRadius(parameters_, result->sigma * result->sigma);
   if (!secondStartWarranted(*result, parameters_, T_initial, centroid, basin.final_radius)) return;
-  for (const Point& point : used) {
-    basin.source_radius = std::max(basin.source_radius, (point - centroid).norm());
-  }
+  for (const Point& point : used) basin.source_rms_radius += (point - centroid).squaredNorm();
+  basin.source_rms_radius = std::sqrt(basin.source_rms_radius / static_cast<double>(used.size()));
   // Within the alignment's deadline: the second start gets what is left of it.
   const double time_limit_ms = parameters_.time_limit_ms;
   if (time_limit_ms > 0.0) {

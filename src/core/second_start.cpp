@@ -27,7 +27,9 @@ bool secondStartWarranted(const RegistrationResult& first, const RegistrationPar
 bool FirstResultBasin::contains(const Eigen::Isometry3d& T) const {
   const double shift = (T * centroid - T_found * centroid).norm();
   const double angle = Eigen::AngleAxisd(T.linear() * T_found.linear().transpose()).angle();
-  return shift + std::abs(angle) * source_radius < final_radius;
+  // Mean of |(R - I)(p - c)|^2 over the points is at most angle^2 times their mean squared
+  // distance from the centroid, and the centroid's term adds to it (the cross term averages out).
+  return std::hypot(shift, angle * source_rms_radius) < final_radius;
 }
 
 bool secondStartIsBetter(const RegistrationResult& first, const RegistrationResult& second) {
