@@ -152,10 +152,15 @@ void PdaRegistration::trySecondStart(const PointList& source, const Eigen::Isome
   if (!secondStartWarranted(*result, parameters_, T_initial, centroid, basin.final_radius)) return;
   for (const Point& point : used) basin.source_rms_radius += (point - centroid).squaredNorm();
   basin.source_rms_radius = std::sqrt(basin.source_rms_radius / static_cast<double>(used.size()));
-  // Within the alignment's deadline: the second start gets what is left of it.
-  const double time_limit_ms = parameters_.time_limit_ms;
-  if (time_limit_ms > 0.0) {
-    const double left_ms = time_limit_ms - std::chrono::duration<double, std::milli>(
+  // Within the alignment's deadline: the second start gets what is left of it. The user's limit
+  // comes back however the second start ends (align() catches what alignUnchecked throws).
+  struct RestoreTimeLimit {
+    double& field;
+    const double value;
+    ~RestoreTimeLimit() { field = value; }
+  } restore{parameters_.time_limit_ms, parameters_.time_limit_ms};
+  if (restore.value > 0.0) {
+    const double left_ms = restore.value - std::chrono::duration<double, std::milli>(
                                                std::chrono::steady_clock::now() - started)
                                                .count();
     if (!(left_ms > 0.0)) return;
@@ -165,7 +170,6 @@ void PdaRegistration::trySecondStart(const PointList& source, const Eigen::Isome
   RegistrationResult second =
       alignUnchecked(source, secondStartPose(result->T_target_source, T_initial, centroid),
                      associations ? &second_associations : nullptr, &basin);
-  parameters_.time_limit_ms = time_limit_ms;
   if (!secondStartIsBetter(*result, second)) return;
   *result = std::move(second);
   if (associations) *associations = std::move(second_associations);
