@@ -1,50 +1,20 @@
 #include "pda_registration/core/pda_registration.hpp"
 
-#include <algorithm>
+// The engine's entry points: the target, the parameters, and align(), which runs the staged
+// alignment (staged_alignment.cpp) and, where its result calls for one, a second start or the
+// other direction.
+
 #include <chrono>
 #include <cmath>
 #include <exception>
-#include <sstream>
+#include <string>
 
 #include "pda_registration/core/alignment_direction.hpp"
-#include "pda_registration/core/alignment_verdict.hpp"
-#include "pda_registration/core/candidate_sets.hpp"
-#include "pda_registration/core/em_run.hpp"
-#include "pda_registration/core/final_statistics.hpp"
-#include "pda_registration/core/nearest_rotation.hpp"
-#include "pda_registration/core/point_filter.hpp"
 #include "pda_registration/core/pose_covariance.hpp"
 #include "pda_registration/core/representative_subset.hpp"
-#include "pda_registration/core/run_extrapolation.hpp"
-#include "pda_registration/core/run_rest.hpp"
 #include "pda_registration/core/second_start.hpp"
-#include "pda_registration/core/source_budget.hpp"
 
 namespace pda_registration {
-namespace {
-
-// Accepts a slightly non-orthonormal rotation (text files round it) and snaps it back; rejects
-// anything that is not close to a rigid transform.
-bool sanitiseInitialGuess(const Eigen::Isometry3d& initial, Eigen::Isometry3d* out) {
-  if (!initial.matrix().allFinite()) return false;
-  Eigen::Matrix3d rotation;
-  if (!nearestRotation(initial.linear(), &rotation)) return false;
-  *out = Eigen::Isometry3d::Identity();
-  out->linear() = rotation;
-  out->translation() = initial.translation();
-  return true;
-}
-
-// The candidate radius of a refine run: 6 sigma clamped to [min_radius, radius]. Far candidates
-// only matter while the estimate is far off; once it is close they are mostly wrong surfaces
-// (parts of the sparse map the dense map never saw), and dropping them keeps them from biasing
-// the fit. 6 sigma keeps virtually every inlier.
-double candidateRadius(const RegistrationParameters& p, double sigma_squared) {
-  if (!(sigma_squared > 0.0)) return p.radius;
-  return std::min(p.radius, std::max(p.min_radius, 6.0 * std::sqrt(sigma_squared)));
-}
-
-}  // namespace
 
 PdaRegistration::PdaRegistration(const RegistrationParameters& parameters)
     : parameters_(parameters) {}
@@ -148,7 +118,7 @@ void PdaRegistration::trySecondStart(const PointList& source, const Eigen::Isome
   FirstResultBasin basin;
   basin.T_found = result->T_target_source;
   basin.centroid = centroid;
-  basin.final_radius = candidateRadius(parameters_, result->sigma * result->sigma);
+  basin.final_radius = refineRadius(parameters_, result->sigma * result->sigma);
   if (!secondStartWarranted(*result, parameters_, T_initial, centroid, basin.final_radius)) return;
   for (const Point& point : used) basin.source_rms_radius += (point - centroid).squaredNorm();
   basin.source_rms_radius = std::sqrt(basin.source_rms_radius / static_cast<double>(used.size()));
@@ -173,225 +143,6 @@ void PdaRegistration::trySecondStart(const PointList& source, const Eigen::Isome
   if (!secondStartIsBetter(*result, second)) return;
   *result = std::move(second);
   if (associations) *associations = std::move(second_associations);
-}
-
-RegistrationResult PdaRegistration::alignUnchecked(const PointList& source_input,
-                                                   const Eigen::Isometry3d& T_target_source_initial,
-                                                   Associations* associations,
-                                                   const FirstResultBasin* abandon_in) {
-  const auto started = std::chrono::steady_clock::now();
-  const RegistrationParameters& p = parameters_;
-  RegistrationResult result;
-  result.T_target_source = T_target_source_initial;
-
-  const std::string parameter_error = validateParameters(p);
-  if (!parameter_error.empty()) {
-    result.reason = "invalid parameters: " + parameter_error;
-    return result;
-  }
-  Eigen::Isometry3d T;
-  if (!sanitiseInitialGuess(T_target_source_initial, &T)) {
-    result.reason = "initial transform is not a finite rigid transform";
-    return result;
-  }
-  result.target_points_dropped = target_map_.droppedPoints();
-  result.target_points_total = target_map_.cloudSize();
-  if (!hasTarget()) {
-    result.reason = "target cloud is empty (no finite points)";
-    return result;
-  }
-
-  PointList& source = workspace_.source;
-  workspace_.search.forget();  // new points in the same memory, perhaps a new target
-  const size_t budget = p.max_source_points > 0 ? static_cast<size_t>(p.max_source_points) : 0;
-  const size_t finite_points = countFinitePoints(source_input);
-  result.source_points_dropped = source_input.size() - finite_points;
-  // A source beyond the budget (and not voxelised first) is sampled straight from the input: the
-  // same subset as from a filtered copy, without copying a map of millions of points.
-  bool budgeted_source = budget > 0 && !(p.source_voxel_size > 0.0) && finite_points > budget;
-  if (budgeted_source) {
-    source = applySourceBudget(source_input, budget, finite_points);
-  } else {
-    source = source_input;
-    removeNonFinitePoints(&source);
-    if (p.source_voxel_size > 0.0) source = voxelDownsample(source, p.source_voxel_size);
-    if (budget > 0) {
-      PointList budgeted = applySourceBudget(source, budget);
-      budgeted_source = !budgeted.empty();
-      if (budgeted_source) source = std::move(budgeted);
-    }
-  }
-  result.source_points_used = source.size();
-  if (source.size() < static_cast<size_t>(p.min_correspondences)) {
-    std::ostringstream reason;
-    reason << "source cloud has " << source.size() << " finite points ("
-           << result.source_points_dropped << " non-finite dropped); at least "
-           << p.min_correspondences << " are needed";
-    result.reason = reason.str();
-    return result;
-  }
-
-  // A target much finer than a budgeted source samples it is indexed as its voxel means at the
-  // source's spacing; a large one around the region this source can reach from its seed.
-  followSourceSpacing(source, budgeted_source);
-  const TargetIndexing how = indexing();
-  AlignedBox reach;
-  if (target_map_.croppingApplies(how)) {
-    reach = reachableRegion(source, T, p.crop_max_translation,
-                            p.crop_max_rotation_deg * M_PI / 180.0, p.radius);
-  }
-  const size_t builds_before = target_map_.builds();
-  if (!target_map_.prepare(how, reach)) {
-    result.reason =
-        "no overlap: the target has no point within reach of the source (bounds "
-        "plus crop_max_translation, crop_max_rotation_deg and radius)";
-    return result;
-  }
-  if (target_map_.builds() != builds_before) result.target_index_ms = target_map_.lastBuildMs();
-  result.target_cropped = target_map_.cropped();
-  result.target_subset_voxel = target_map_.subsetVoxel();
-  result.normal_voxel_size = target_map_.normalVoxelSize();
-  const std::shared_ptr<const TargetIndex> index = target_map_.index();
-  const std::shared_ptr<const SurfaceNormalMap> normal_map =
-      target_map_.normals() ? target_map_.normals() : std::make_shared<const SurfaceNormalMap>();
-  result.target_points_used = index->size();
-
-  // Three stages, each until a run moves less than 10 epsilons (the last: less than the
-  // epsilons). Approach: the full radius on a strided subset of the source (these runs only need
-  // to bring the estimate close, at a fraction of the cost). Settle: the full radius on every
-  // point (a subset can stall where the whole cloud would not). Refine: every point, the
-  // shrinking radius. Single-run mode (the paper's) is one refine run at the full radius.
-  PointList& coarse_source = workspace_.coarse_source;
-  coarse_source.clear();
-  if (p.max_runs > 1 && p.coarse_stride > 1 &&
-      source.size() / p.coarse_stride >= 20 * static_cast<size_t>(p.min_correspondences)) {
-    coarse_source = applySourceBudget(source, source.size() / p.coarse_stride);
-  }
-  enum class Stage { kApproach, kSettle, kRefine };
-  Stage stage = p.max_runs == 1 ? Stage::kRefine
-                                : (coarse_source.empty() ? Stage::kSettle : Stage::kApproach);
-
-  EmState state;
-  state.T = T;
-  state.nu = p.nu;
-  if (p.sigma_mode == SigmaMode::kFixed) state.sigma_squared = p.fixed_sigma * p.fixed_sigma;
-  CandidateSets& candidates = workspace_.candidates;
-  Increment last_run_step{0.0, 0.0};
-  bool em_settled = false;  // did the last run's EM loop stop on the epsilons?
-
-  // max_runs bounds the work, counted in runs over the whole source: an approach run over the
-  // subset counts as the subset's share. Sliding along a valley of the ground can take the
-  // approach many cheap runs (a lidar scan from 10-20 deg away: 40-150 of them).
-  double work = 0.0;
-  const PoseStep step_metric = PoseStep::over(source);
-  RunExtrapolation extrapolation(step_metric);
-  RunRest rest(step_metric);
-  const auto outOfTime = [&] {
-    return p.time_limit_ms > 0.0 &&
-           std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - started)
-                   .count() > p.time_limit_ms;
-  };
-  for (int run = 1; work < p.max_runs; ++run) {
-    if (run > 1 && outOfTime()) {
-      result.out_of_time = true;
-      break;
-    }
-    const PointList& active = stage == Stage::kApproach ? coarse_source : source;
-    work += static_cast<double>(active.size()) / static_cast<double>(source.size());
-    const double radius = stage == Stage::kRefine && p.max_runs > 1
-                              ? candidateRadius(p, state.sigma_squared)
-                              : p.radius;
-    findCandidateSets(*index, active, state.T, p.k, radius, p.threads, &workspace_.search,
-                      &candidates);
-    result.runs = run;
-    result.source_points_with_candidates = candidates.sourcePointsWithCandidates();
-    if (result.source_points_with_candidates < static_cast<size_t>(p.min_correspondences)) {
-      std::ostringstream reason;
-      reason << "no overlap: only " << result.source_points_with_candidates
-             << " source points have a target point within radius " << radius << " (need "
-             << p.min_correspondences << ")";
-      result.reason = reason.str();
-      result.sigma = std::sqrt(state.sigma_squared);
-      return result;
-    }
-    const Eigen::Isometry3d T_run_start = state.T;
-    RegistrationParameters run_parameters = p;  // a few numbers: copied once a run
-    run_parameters.nu_mode = nuModeOfRun(p, stage == Stage::kRefine);
-    // EM's own steps are extrapolated once the approach has chosen the basin: there, tails of
-    // steps as wide as sigma sent a VLP-16 scan pair from 10 deg 1.6 m along its slide.
-    const PoseStep* em_step_metric = stage == Stage::kApproach ? nullptr : &step_metric;
-    if (!runEm(active, *normal_map, run_parameters, em_step_metric, &workspace_, &state,
-               &em_settled, &result.em_iterations)) {
-      result.reason = "M-step failed: the weighted correspondences do not constrain the pose";
-      return result;
-    }
-    last_run_step = incrementBetween(T_run_start, state.T);
-    // A stage ends when a run moves less than its epsilons: 10 epsilons before the refine stage,
-    // the epsilons themselves in it.
-    const double stage_scale = stage == Stage::kRefine ? 1.0 : 10.0;
-    const bool stage_done = last_run_step.translation <= stage_scale * p.translation_epsilon &&
-                            last_run_step.rotation <= stage_scale * p.rotation_epsilon;
-    // The runs converge linearly, slowly on dense clouds: the next run starts at the steps' tail
-    // (run_extrapolation.hpp), at most 2 sigma further, where the candidate sets are still
-    // about the same (a longer jump traded lidar scans' reach for speed: car park from 10 deg,
-    // 9 -> 7 of 10 at no limit, 9 at 2 sigma).
-    // The approach chooses the basin, from steps as wide as sigma: there a tail is only taken
-    // once three successive steps agree (two ratios both say "linear"), not two. Two were enough
-    // for an RGB-D fragment pair from 10 deg to be pushed one more step (0.19 m) along its slide
-    // after its second run (sigma 0.32 m), past its basin's ridge, and to end 2.3 m off; the
-    // settle and refine stages keep two.
-    extrapolation.setAgreementsNeeded(stage == Stage::kApproach ? 2 : 1);
-    if (!stage_done && p.max_runs > 1) {
-      state.T = extrapolation.next(T_run_start, state.T, stage_scale * p.translation_epsilon,
-                                   kExtrapolationSigmas * std::sqrt(state.sigma_squared));
-    }
-    if (abandon_in && abandon_in->contains(state.T)) {
-      result.reason = "second start: back in the first result's basin";
-      return result;
-    }
-    // An approach that comes to rest with residuals as wide as the search is not at a fit (the
-    // "unresolved" verdict below), and the whole source would only wander on from there: stop,
-    // so that the other direction (alignment_direction.hpp) is tried at once. (Stopping approaches
-    // that are still moving at that sigma after a quarter of the budget cut off slides that
-    // would have reached the truth.)
-    if (stage == Stage::kApproach && stage_done &&
-        residualsSpanTheSearch(p, std::sqrt(state.sigma_squared))) {
-      result.converged = true;  // at rest: judgeConvergence says what it is
-      break;
-    }
-    // Runs that cycle in place (run_rest.hpp) have come to rest as surely as a short step: that
-    // ends any stage. An approach on a map that covered a third of its scan cycled between two
-    // poses 1.4 mm apart (above its 10 epsilons) until the work bound, "not converged" at 5 mm.
-    const bool cycling = rest.cameBack(T_run_start, state.T);
-    if (stage != Stage::kRefine) {
-      if (stage_done || cycling) {
-        stage = stage == Stage::kApproach ? Stage::kSettle : Stage::kRefine;
-        rest.reset();  // both look back over this stage's steps only
-        extrapolation.reset();
-      }
-      continue;  // convergence is only declared in the refine stage
-    }
-    // Converged: a run below the epsilons, or runs that cycle in place.
-    if (isSmall(last_run_step, p) || cycling) {
-      result.converged = true;
-      break;
-    }
-  }
-  // With max_runs = 1 (the paper's single-run mode) convergence means EM settled in that run.
-  if (!result.converged && p.max_runs == 1) result.converged = em_settled;
-
-  T = state.T;
-  result.T_target_source = T;
-  result.sigma = std::sqrt(state.sigma_squared);
-  result.nu = state.nu;
-  // Statistics on every source point (the loop may have stopped in the coarse stage).
-  if (candidates.sourceCount() != source.size()) {
-    findCandidateSets(*index, source, T, p.k, p.radius, p.threads, &workspace_.search, &candidates);
-  }
-  fillFinalStatistics(source, *index, *normal_map, p, state, &workspace_, &result, associations);
-
-  judgeConvergence(p, result.converged, last_run_step, &result);
-  return result;
 }
 
 RegistrationResult PdaRegistration::alignSwapped(const PointList& source,

@@ -1,5 +1,6 @@
 #include "pda_registration/core/registration_parameters.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <sstream>
 
@@ -92,6 +93,11 @@ NuMode nuModeOfRun(const RegistrationParameters& p, bool refine_stage) {
   if (p.nu_mode != NuMode::kRefine) return p.nu_mode;
   // nu = inf asks for the paper's Gaussian (`gaussian: true`): the default mode keeps it.
   return refine_stage && std::isfinite(p.nu) ? NuMode::kEstimated : NuMode::kFixed;
+}
+
+double refineRadius(const RegistrationParameters& p, double sigma_squared) {
+  if (!(sigma_squared > 0.0)) return p.radius;
+  return std::min(p.radius, std::max(p.min_radius, 6.0 * std::sqrt(sigma_squared)));
 }
 
 bool parseSolver(const std::string& text, MStepSolver* solver) {

@@ -116,6 +116,11 @@ const char* toString(NuMode mode);
 /// The mode one run uses: kRefine is kFixed before the refine stage and kEstimated in it; with
 /// nu = inf (the paper's Gaussian, asked for) kFixed throughout.
 NuMode nuModeOfRun(const RegistrationParameters& p, bool refine_stage);
+/// The candidate radius of a refine run: 6 sigma clamped to [min_radius, radius] (radius while
+/// sigma is unknown). Far candidates only matter while the estimate is far off; once it is close
+/// they are mostly wrong surfaces (parts of the sparse map the dense map never saw), and dropping
+/// them keeps them from biasing the fit. 6 sigma keeps virtually every inlier.
+double refineRadius(const RegistrationParameters& p, double sigma_squared);
 /// Parses "gauss_newton" / "closed_form" / "ceres"; returns false on anything else.
 bool parseSolver(const std::string& text, MStepSolver* solver);
 /// Parses "estimated" / "fixed"; returns false on anything else.
