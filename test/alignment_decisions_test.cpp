@@ -1,7 +1,7 @@
 // What a running system decides around each alignment, ROS-free: where it starts (the warm
 // start's correction, and the retry from the seed when a warm attempt is rejected) and whether
-// its result may replace the last good estimate (the acceptance gate), and when a converged result
-// is tried again from a second start.
+// its result may replace the last good estimate (the acceptance gate), when a converged result
+// is tried again from a second start, and when an unresolved one is tried with a wider search.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -12,6 +12,7 @@
 #include "pda_registration/core/degrees_of_freedom.hpp"
 #include "pda_registration/core/second_start.hpp"
 #include "pda_registration/core/warm_start.hpp"
+#include "pda_registration/core/wider_search.hpp"
 
 namespace pda_registration {
 namespace {
@@ -228,6 +229,54 @@ TEST(SecondStart, ReplacesTheFirstOnlyWhenConvergedAndBetterSupported) {
   EXPECT_FALSE(secondStartIsBetter(second, first));
   second.converged = false;
   EXPECT_FALSE(secondStartIsBetter(first, second));
+}
+
+// Only a result that came to rest with residuals as wide as its search (6 sigma >= radius) is
+// aligned again, and only if it stopped on its own: a result out of time has no time left, a
+// converged one needs nothing, and fixed sigma or the single-run mode never judge the residuals.
+TEST(WiderSearch, OnlyAnUnresolvedRestIsSearchedAgain) {
+  const RegistrationParameters p;  // radius 1 m
+  RegistrationResult unresolved;
+  unresolved.sigma = 0.22;  // the car park's rest 11 deg short in yaw
+  EXPECT_TRUE(widerSearchWarranted(unresolved, p));
+  RegistrationResult resolved = unresolved;
+  resolved.sigma = 0.15;  // 6 sigma below the radius: failed for another reason
+  EXPECT_FALSE(widerSearchWarranted(resolved, p));
+  RegistrationResult converged = unresolved;
+  converged.converged = true;
+  EXPECT_FALSE(widerSearchWarranted(converged, p));
+  RegistrationResult out_of_time = unresolved;
+  out_of_time.out_of_time = true;
+  EXPECT_FALSE(widerSearchWarranted(out_of_time, p));
+  RegistrationParameters fixed_sigma = p;
+  fixed_sigma.sigma_mode = SigmaMode::kFixed;
+  EXPECT_FALSE(widerSearchWarranted(unresolved, fixed_sigma));
+  RegistrationParameters single_run = p;
+  single_run.max_runs = 1;
+  EXPECT_FALSE(widerSearchWarranted(unresolved, single_run));
+}
+
+// The wider search widens the radius and nothing else; its result is kept only where it would
+// also be resolved at the user's radius (a rest at sigma 0.3 m passes 6 sigma < 2 m, not < 1 m).
+TEST(WiderSearch, DoublesTheRadiusAndKeepsOnlyAResultResolvedAtTheUsersRadius) {
+  RegistrationParameters p;
+  p.radius = 1.5;
+  p.k = 7;
+  const RegistrationParameters wider = widerSearchParameters(p);
+  EXPECT_DOUBLE_EQ(wider.radius, 3.0);
+  EXPECT_EQ(wider.k, 7);
+  EXPECT_DOUBLE_EQ(wider.min_radius, p.min_radius);
+  EXPECT_DOUBLE_EQ(wider.time_limit_ms, p.time_limit_ms);
+
+  RegistrationResult wide;
+  wide.converged = true;
+  wide.sigma = 0.015;
+  EXPECT_TRUE(widerSearchHolds(wide, p));
+  wide.sigma = 0.3;  // resolved at 3 m, not at 1.5 m
+  EXPECT_FALSE(widerSearchHolds(wide, p));
+  wide.sigma = 0.015;
+  wide.converged = false;
+  EXPECT_FALSE(widerSearchHolds(wide, p));
 }
 
 }  // namespace

@@ -1,8 +1,8 @@
 #include "pda_registration/core/pda_registration.hpp"
 
 // The engine's entry points: the target, the parameters, and align(), which runs the staged
-// alignment (staged_alignment.cpp) and, where its result calls for one, a second start or the
-// other direction.
+// alignment (staged_alignment.cpp) and, where its result calls for one, a second start, the
+// other direction or a wider search.
 
 #include <chrono>
 #include <cmath>
@@ -13,8 +13,37 @@
 #include "pda_registration/core/pose_covariance.hpp"
 #include "pda_registration/core/representative_subset.hpp"
 #include "pda_registration/core/second_start.hpp"
+#include "pda_registration/core/wider_search.hpp"
 
 namespace pda_registration {
+namespace {
+
+// An alignment that align() runs after the first one (a second start, a wider search): it gets
+// what is left of the user's time limit, and the user's parameters come back however it ends
+// (align() catches what alignUnchecked throws).
+class NestedAlignment {
+ public:
+  NestedAlignment(RegistrationParameters* live, std::chrono::steady_clock::time_point started)
+      : live_(live), user_(*live) {
+    if (!(user_.time_limit_ms > 0.0)) return;  // no limit
+    live_->time_limit_ms = user_.time_limit_ms - std::chrono::duration<double, std::milli>(
+                                                     std::chrono::steady_clock::now() - started)
+                                                     .count();
+    time_left_ = live_->time_limit_ms > 0.0;
+  }
+  NestedAlignment(const NestedAlignment&) = delete;
+  NestedAlignment& operator=(const NestedAlignment&) = delete;
+  ~NestedAlignment() { *live_ = user_; }
+  /// False when the user's time limit is already spent: the nested alignment is not run.
+  bool timeLeft() const { return time_left_; }
+
+ private:
+  RegistrationParameters* live_;
+  const RegistrationParameters user_;
+  bool time_left_ = true;
+};
+
+}  // namespace
 
 PdaRegistration::PdaRegistration(const RegistrationParameters& parameters)
     : parameters_(parameters) {}
@@ -91,6 +120,7 @@ RegistrationResult PdaRegistration::align(const PointList& source,
         if (associations) *associations = std::move(swapped_associations);
       }
     }
+    tryWiderSearch(source, T_target_source_initial, start, &result, associations);
   } catch (const std::exception& error) {
     if (associations) *associations = Associations();
     result = RegistrationResult();
@@ -122,20 +152,8 @@ void PdaRegistration::trySecondStart(const PointList& source, const Eigen::Isome
   if (!secondStartWarranted(*result, parameters_, T_initial, centroid, basin.final_radius)) return;
   for (const Point& point : used) basin.source_rms_radius += (point - centroid).squaredNorm();
   basin.source_rms_radius = std::sqrt(basin.source_rms_radius / static_cast<double>(used.size()));
-  // Within the alignment's deadline: the second start gets what is left of it. The user's limit
-  // comes back however the second start ends (align() catches what alignUnchecked throws).
-  struct RestoreTimeLimit {
-    double& field;
-    const double value;
-    ~RestoreTimeLimit() { field = value; }
-  } restore{parameters_.time_limit_ms, parameters_.time_limit_ms};
-  if (restore.value > 0.0) {
-    const double left_ms = restore.value - std::chrono::duration<double, std::milli>(
-                                               std::chrono::steady_clock::now() - started)
-                                               .count();
-    if (!(left_ms > 0.0)) return;
-    parameters_.time_limit_ms = left_ms;
-  }
+  const NestedAlignment nested(&parameters_, started);
+  if (!nested.timeLeft()) return;
   Associations second_associations;
   RegistrationResult second =
       alignUnchecked(source, secondStartPose(result->T_target_source, T_initial, centroid),
@@ -143,6 +161,23 @@ void PdaRegistration::trySecondStart(const PointList& source, const Eigen::Isome
   if (!secondStartIsBetter(*result, second)) return;
   *result = std::move(second);
   if (associations) *associations = std::move(second_associations);
+}
+
+void PdaRegistration::tryWiderSearch(const PointList& source, const Eigen::Isometry3d& T_initial,
+                                     std::chrono::steady_clock::time_point started,
+                                     RegistrationResult* result, Associations* associations) {
+  if (!widerSearchWarranted(*result, parameters_)) return;
+  const RegistrationParameters user = parameters_;
+  const NestedAlignment nested(&parameters_, started);
+  if (!nested.timeLeft()) return;
+  parameters_.radius = widerSearchParameters(user).radius;
+  Associations wide_associations;
+  RegistrationResult wide =
+      alignUnchecked(source, T_initial, associations ? &wide_associations : nullptr);
+  if (!widerSearchHolds(wide, user)) return;
+  wide.search_widened = true;
+  *result = std::move(wide);
+  if (associations) *associations = std::move(wide_associations);
 }
 
 RegistrationResult PdaRegistration::alignSwapped(const PointList& source,

@@ -70,6 +70,11 @@ class PdaRegistration {
   void trySecondStart(const PointList& source, const Eigen::Isometry3d& T_initial,
                       std::chrono::steady_clock::time_point started, RegistrationResult* result,
                       Associations* associations);
+  /// A result that came to rest unresolved: once more from the seed with the radius widened,
+  /// kept if that converges at a fit (wider_search.hpp).
+  void tryWiderSearch(const PointList& source, const Eigen::Isometry3d& T_initial,
+                      std::chrono::steady_clock::time_point started, RegistrationResult* result,
+                      Associations* associations);
   /// The target aligned onto `source` (the denser cloud), answered in the usual direction.
   RegistrationResult alignSwapped(const PointList& source,
                                   const Eigen::Isometry3d& T_target_source_initial,

@@ -41,6 +41,9 @@ struct RegistrationResult {
   /// aligned onto it and the answer inverted (alignment_direction.hpp); the statistics (sigma,
   /// inliers, candidates) are of that run.
   bool roles_swapped = false;
+  /// The first alignment came to rest unresolved; this is the one from the seed with the radius
+  /// widened (wider_search.hpp).
+  bool search_widened = false;
   double target_index_ms = 0.0;  ///< time this call spent (re)indexing the target (in time_ms)
   size_t target_points_dropped = 0;          ///< NaN/Inf target points dropped
   size_t source_points_with_candidates = 0;  ///< in the last run

@@ -33,6 +33,7 @@ struct AlignmentStatusValues {
   size_t dense_points = 0, indexed_points = 0;
   bool target_cropped = false;
   bool roles_swapped = false;  ///< the source was the denser cloud: EM ran the other way round
+  bool search_widened = false;  ///< came to rest unresolved: aligned again with the radius doubled
   ros::WallTime dense_arrival;
   // Index keeping (its own thread): when the index in use became ready, what its last update
   // cost and how it went ("extended", "indexed", ...).
