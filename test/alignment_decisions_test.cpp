@@ -256,7 +256,8 @@ TEST(WiderSearch, OnlyAnUnresolvedRestIsSearchedAgain) {
   EXPECT_FALSE(widerSearchWarranted(unresolved, single_run));
 }
 
-// The wider search widens the radius and nothing else; its result is kept only where it would
+// The wider search widens the radius and nothing else (a radius the user fixed stays the refine
+// runs' floor); its result is kept only where it would
 // also be resolved at the user's radius (a rest at sigma 0.3 m passes 6 sigma < 2 m, not < 1 m).
 TEST(WiderSearch, DoublesTheRadiusAndKeepsOnlyAResultResolvedAtTheUsersRadius) {
   RegistrationParameters p;
@@ -267,6 +268,9 @@ TEST(WiderSearch, DoublesTheRadiusAndKeepsOnlyAResultResolvedAtTheUsersRadius) {
   EXPECT_EQ(wider.k, 7);
   EXPECT_DOUBLE_EQ(wider.min_radius, p.min_radius);
   EXPECT_DOUBLE_EQ(wider.time_limit_ms, p.time_limit_ms);
+  RegistrationParameters fixed_radius = p;
+  fixed_radius.min_radius = 2.0;  // >= radius: the user fixed the radius at 1.5 m
+  EXPECT_DOUBLE_EQ(widerSearchParameters(fixed_radius).min_radius, 1.5);
 
   RegistrationResult wide;
   wide.converged = true;

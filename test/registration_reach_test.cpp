@@ -4,9 +4,14 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <limits>
 #include <random>
 
+#include "pda_registration/core/error_metrics.hpp"
+#include "pda_registration/core/pda_registration.hpp"
+#include "pda_registration/core/perturbation.hpp"
 #include "pda_registration/core/source_budget.hpp"
 #include "pda_registration/simulation/map_simulation.hpp"
 #include "test_support/simulated_cases.hpp"
@@ -115,15 +120,36 @@ TEST(Reach, RgbdFragmentsFromTwentyDegreesLeaveAFalseRestByASecondStart) {
 // beyond the 1 m radius, and the approach came to rest 11 deg short in yaw, "unresolved" (sigma
 // 0.22 m). Aligned again from the seed with the radius doubled, it converges on the truth
 // (wider_search.hpp).
+// The user's parameters come back afterwards, and the associations are the kept result's.
 TEST(Reach, ACarParkFromTwentyDegreesIsFoundByTheWiderSearch) {
   MapSimulationOptions options = testing_support::carParkOptions(DenseSensor::kLidar64, false);
   options.seed = 6;
   const SimulatedMaps maps = simulateMaps(options);
-  RegistrationResult result;
-  const double error = alignedError(maps, RegistrationParameters(), 20.0, 1.0, 2, &result);
+  const RegistrationParameters defaults;
+  PdaRegistration registration(defaults);
+  ASSERT_TRUE(registration.setTarget(maps.dense));
+  Associations associations;
+  const RegistrationResult result = registration.align(
+      maps.sparse, maps.T_target_source * randomPerturbation(20.0, 1.0, 2), &associations);
   EXPECT_TRUE(result.converged) << result.reason;
   EXPECT_TRUE(result.search_widened);
-  EXPECT_LT(error, 0.01);
+  EXPECT_LT(poseError(maps.sparse, result.T_target_source, maps.T_target_source).mean_distance,
+            0.01);
+  EXPECT_DOUBLE_EQ(registration.parameters().radius, defaults.radius);
+  EXPECT_DOUBLE_EQ(registration.parameters().time_limit_ms, defaults.time_limit_ms);
+  // Each associated source point sits at the kept pose: within a few sigma of its nearest
+  // candidate, which the unresolved rest (11 deg off in yaw) was not for most points.
+  ASSERT_GT(associations.source_points.size(), 1000u);
+  size_t near = 0;
+  for (size_t j = 0; j + 1 < associations.offsets.size(); ++j) {
+    double best = std::numeric_limits<double>::infinity();
+    for (size_t c = associations.offsets[j]; c < associations.offsets[j + 1]; ++c) {
+      best = std::min(best, (associations.candidates[c] - associations.source_points[j]).norm());
+    }
+    near += best < 5.0 * result.sigma ? 1 : 0;
+  }
+  EXPECT_GT(static_cast<double>(near),
+            0.5 * static_cast<double>(associations.source_points.size()));
 }
 
 // A growing SLAM map's first third (the office's first 1M Kinect points, in scan order) against

@@ -158,7 +158,11 @@ void PdaRegistration::trySecondStart(const PointList& source, const Eigen::Isome
   RegistrationResult second =
       alignUnchecked(source, secondStartPose(result->T_target_source, T_initial, centroid),
                      associations ? &second_associations : nullptr, &basin);
-  if (!secondStartIsBetter(*result, second)) return;
+  if (!secondStartIsBetter(*result, second)) {
+    result->target_index_ms += second.target_index_ms;  // this call's indexing, kept or not
+    return;
+  }
+  second.target_index_ms += result->target_index_ms;
   *result = std::move(second);
   if (associations) *associations = std::move(second_associations);
 }
@@ -174,8 +178,12 @@ void PdaRegistration::tryWiderSearch(const PointList& source, const Eigen::Isome
   Associations wide_associations;
   RegistrationResult wide =
       alignUnchecked(source, T_initial, associations ? &wide_associations : nullptr);
-  if (!widerSearchHolds(wide, user)) return;
+  if (!widerSearchHolds(wide, user)) {
+    result->target_index_ms += wide.target_index_ms;  // this call's indexing, kept or not
+    return;
+  }
   wide.search_widened = true;
+  wide.target_index_ms += result->target_index_ms;
   *result = std::move(wide);
   if (associations) *associations = std::move(wide_associations);
 }

@@ -210,7 +210,8 @@ RegistrationResult PdaRegistration::alignUnchecked(const PointList& source_input
     }
     // An approach that comes to rest with residuals as wide as the search is not at a fit (the
     // "unresolved" verdict below), and the whole source would only wander on from there: stop,
-    // so that the other direction (alignment_direction.hpp) is tried at once. (Stopping approaches
+    // so that the other direction (alignment_direction.hpp) or a wider search (wider_search.hpp)
+    // is tried at once. (Stopping approaches
     // that are still moving at that sigma after a quarter of the budget cut off slides that
     // would have reached the truth.)
     if (stage == Stage::kApproach && stage_done &&

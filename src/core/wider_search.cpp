@@ -1,5 +1,7 @@
 #include "pda_registration/core/wider_search.hpp"
 
+#include <algorithm>
+
 #include "pda_registration/core/alignment_verdict.hpp"
 
 namespace pda_registration {
@@ -12,6 +14,8 @@ bool widerSearchWarranted(const RegistrationResult& first, const RegistrationPar
 RegistrationParameters widerSearchParameters(const RegistrationParameters& p) {
   RegistrationParameters wider = p;
   wider.radius = kWiderSearchFactor * p.radius;
+  // A radius the user fixed (min_radius >= radius) stays the refine runs' floor, not the wider one.
+  wider.min_radius = std::min(p.min_radius, p.radius);
   return wider;
 }
 

@@ -33,7 +33,9 @@ enum class NuMode {
 struct RegistrationParameters {
   // --- Data association (paper Sec. IV) -----------------------------------------------------
   int k = 5;            ///< max candidates per source point (k nearest target points)
-  double radius = 1.0;  ///< [length] candidates must lie within this distance
+  /// [length] candidates must lie within this distance (an alignment left unresolved is tried
+  /// once more at twice it: wider_search.hpp)
+  double radius = 1.0;
   /// [length] later runs shrink the radius to 6 sigma but not below this (>= radius: fixed)
   double min_radius = 0.25;
   // --- E-step ------------------------------------------------------------------------------

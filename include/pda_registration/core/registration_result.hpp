@@ -41,8 +41,8 @@ struct RegistrationResult {
   /// aligned onto it and the answer inverted (alignment_direction.hpp); the statistics (sigma,
   /// inliers, candidates) are of that run.
   bool roles_swapped = false;
-  /// The first alignment came to rest unresolved; this is the one from the seed with the radius
-  /// widened (wider_search.hpp).
+  /// The first alignment ended unresolved (sigma as wide as its search); this is the one from the
+  /// seed with the radius widened (wider_search.hpp; its overlap and support within that radius).
   bool search_widened = false;
   double target_index_ms = 0.0;  ///< time this call spent (re)indexing the target (in time_ms)
   size_t target_points_dropped = 0;          ///< NaN/Inf target points dropped

@@ -15,13 +15,15 @@ namespace pda_registration {
 /// The wider search's radius, in units of the user's.
 constexpr double kWiderSearchFactor = 2.0;
 
-/// Whether `first` (aligned with `p`) warrants the wider search: it came to rest or ran out of
-/// runs, not of time, with sigma estimated and as wide as its search (6 sigma >= radius), in the
-/// multi-run mode.
+/// Whether `first` (aligned with `p`) warrants the wider search: it did not converge, for any
+/// reason but time (at rest, out of runs, or its overlap lost mid-way), with sigma estimated and
+/// as wide as its search (6 sigma >= radius), in the multi-run mode.
 bool widerSearchWarranted(const RegistrationResult& first, const RegistrationParameters& p);
 
-/// `p` with the radius widened by kWiderSearchFactor (the refine runs still shrink it to 6 sigma,
-/// not below min_radius, so a converged result ends on the user's radius and finer).
+/// `p` with the radius widened by kWiderSearchFactor; min_radius at most the user's radius (the
+/// refine runs still shrink the radius to 6 sigma, not below it, so a converged result ends on
+/// the user's radius and finer). The statistics of its result (overlap, support) are counted
+/// within the wider radius.
 RegistrationParameters widerSearchParameters(const RegistrationParameters& p);
 
 /// Whether the wider search's result replaces the first: converged, and resolved at the user's
