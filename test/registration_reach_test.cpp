@@ -152,6 +152,32 @@ TEST(Reach, ACarParkFromTwentyDegreesIsFoundByTheWiderSearch) {
             0.5 * static_cast<double>(associations.source_points.size()));
 }
 
+// A radius the user fixed (min_radius >= radius) bounds the wider search's final candidates too:
+// only the search widens, not the radius the answer rests on.
+TEST(Reach, TheWiderSearchKeepsARadiusTheUserFixed) {
+  MapSimulationOptions options = testing_support::carParkOptions(DenseSensor::kLidar64, false);
+  options.seed = 6;
+  const SimulatedMaps maps = simulateMaps(options);
+  RegistrationParameters fixed;
+  fixed.radius = 1.0;
+  fixed.min_radius = 1.5;
+  PdaRegistration registration(fixed);
+  ASSERT_TRUE(registration.setTarget(maps.dense));
+  Associations associations;
+  const RegistrationResult result = registration.align(
+      maps.sparse, maps.T_target_source * randomPerturbation(20.0, 1.0, 2), &associations);
+  ASSERT_TRUE(result.search_widened) << result.reason;
+  ASSERT_FALSE(associations.candidates.empty());
+  double farthest = 0.0;
+  for (size_t j = 0; j + 1 < associations.offsets.size(); ++j) {
+    for (size_t c = associations.offsets[j]; c < associations.offsets[j + 1]; ++c) {
+      farthest =
+          std::max(farthest, (associations.candidates[c] - associations.source_points[j]).norm());
+    }
+  }
+  EXPECT_LE(farthest, fixed.radius);
+}
+
 // A growing SLAM map's first third (the office's first 1M Kinect points, in scan order) against
 // a whole VLP-16 revolution: from 0.5 deg / 3 cm the approach cycled between two poses 1.4 mm
 // apart, above its 10 epsilons, until the work bound (200 runs, "not converged" 5 mm off). Runs

@@ -8,6 +8,7 @@
 #include <cmath>
 #include <exception>
 #include <string>
+#include <utility>
 
 #include "pda_registration/core/alignment_direction.hpp"
 #include "pda_registration/core/pose_covariance.hpp"
@@ -42,6 +43,19 @@ class NestedAlignment {
   const RegistrationParameters user_;
   bool time_left_ = true;
 };
+
+// What a nested alignment leaves: its result (and associations) replace the first's when `keep`;
+// either way the answer counts the indexing both did in this call.
+void adoptNested(bool keep, RegistrationResult* nested, Associations* nested_associations,
+                 RegistrationResult* result, Associations* associations) {
+  if (!keep) {
+    result->target_index_ms += nested->target_index_ms;
+    return;
+  }
+  nested->target_index_ms += result->target_index_ms;
+  *result = std::move(*nested);
+  if (associations) *associations = std::move(*nested_associations);
+}
 
 }  // namespace
 
@@ -158,13 +172,8 @@ void PdaRegistration::trySecondStart(const PointList& source, const Eigen::Isome
   RegistrationResult second =
       alignUnchecked(source, secondStartPose(result->T_target_source, T_initial, centroid),
                      associations ? &second_associations : nullptr, &basin);
-  if (!secondStartIsBetter(*result, second)) {
-    result->target_index_ms += second.target_index_ms;  // this call's indexing, kept or not
-    return;
-  }
-  second.target_index_ms += result->target_index_ms;
-  *result = std::move(second);
-  if (associations) *associations = std::move(second_associations);
+  adoptNested(secondStartIsBetter(*result, second), &second, &second_associations, result,
+              associations);
 }
 
 void PdaRegistration::tryWiderSearch(const PointList& source, const Eigen::Isometry3d& T_initial,
@@ -174,18 +183,12 @@ void PdaRegistration::tryWiderSearch(const PointList& source, const Eigen::Isome
   const RegistrationParameters user = parameters_;
   const NestedAlignment nested(&parameters_, started);
   if (!nested.timeLeft()) return;
-  parameters_.radius = widerSearchParameters(user).radius;
+  parameters_ = widerSearchParameters(parameters_);  // the user's, with what is left of the time
   Associations wide_associations;
   RegistrationResult wide =
       alignUnchecked(source, T_initial, associations ? &wide_associations : nullptr);
-  if (!widerSearchHolds(wide, user)) {
-    result->target_index_ms += wide.target_index_ms;  // this call's indexing, kept or not
-    return;
-  }
   wide.search_widened = true;
-  wide.target_index_ms += result->target_index_ms;
-  *result = std::move(wide);
-  if (associations) *associations = std::move(wide_associations);
+  adoptNested(widerSearchHolds(wide, user), &wide, &wide_associations, result, associations);
 }
 
 RegistrationResult PdaRegistration::alignSwapped(const PointList& source,
