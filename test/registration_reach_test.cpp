@@ -114,6 +114,24 @@ TEST(Reach, RgbdFragmentsFromTwentyDegreesLeaveAFalseRestByASecondStart) {
   EXPECT_LT(error, 0.01);
 }
 
+// The car park of pda_simulate --scene outdoor --seed 6 (not a benchmark layout), simulated once.
+const SimulatedMaps& carParkOfSeed6() {
+  static const SimulatedMaps maps = [] {
+    MapSimulationOptions options = testing_support::carParkOptions(DenseSensor::kLidar64, false);
+    options.seed = 6;
+    return simulateMaps(options);
+  }();
+  return maps;
+}
+
+// Its scan aligned from the ground truth perturbed by 20 deg / 1 m (perturbation 2).
+RegistrationResult alignFromTwentyDegrees(const SimulatedMaps& maps, PdaRegistration* registration,
+                                          Associations* associations) {
+  EXPECT_TRUE(registration->setTarget(maps.dense));
+  return registration->align(maps.sparse, maps.T_target_source * randomPerturbation(20.0, 1.0, 2),
+                             associations);
+}
+
 // A car park scanned by a 64-beam lidar (the dense map) and a VLP-16 (pda_simulate --scene outdoor
 // --seed 6, a layout the benchmark does not use), from 20 deg / 1 m (perturbation 2): the ground
 // set height, roll and pitch at once, but the buildings and poles that set the yaw had moved
@@ -122,15 +140,11 @@ TEST(Reach, RgbdFragmentsFromTwentyDegreesLeaveAFalseRestByASecondStart) {
 // (wider_search.hpp).
 // The user's parameters come back afterwards, and the associations are the kept result's.
 TEST(Reach, ACarParkFromTwentyDegreesIsFoundByTheWiderSearch) {
-  MapSimulationOptions options = testing_support::carParkOptions(DenseSensor::kLidar64, false);
-  options.seed = 6;
-  const SimulatedMaps maps = simulateMaps(options);
+  const SimulatedMaps& maps = carParkOfSeed6();
   const RegistrationParameters defaults;
   PdaRegistration registration(defaults);
-  ASSERT_TRUE(registration.setTarget(maps.dense));
   Associations associations;
-  const RegistrationResult result = registration.align(
-      maps.sparse, maps.T_target_source * randomPerturbation(20.0, 1.0, 2), &associations);
+  const RegistrationResult result = alignFromTwentyDegrees(maps, &registration, &associations);
   EXPECT_TRUE(result.converged) << result.reason;
   EXPECT_TRUE(result.search_widened);
   EXPECT_LT(poseError(maps.sparse, result.T_target_source, maps.T_target_source).mean_distance,
@@ -155,17 +169,13 @@ TEST(Reach, ACarParkFromTwentyDegreesIsFoundByTheWiderSearch) {
 // A radius the user fixed (min_radius >= radius) bounds the wider search's final candidates too:
 // only the search widens, not the radius the answer rests on.
 TEST(Reach, TheWiderSearchKeepsARadiusTheUserFixed) {
-  MapSimulationOptions options = testing_support::carParkOptions(DenseSensor::kLidar64, false);
-  options.seed = 6;
-  const SimulatedMaps maps = simulateMaps(options);
   RegistrationParameters fixed;
   fixed.radius = 1.0;
   fixed.min_radius = 1.5;
   PdaRegistration registration(fixed);
-  ASSERT_TRUE(registration.setTarget(maps.dense));
   Associations associations;
-  const RegistrationResult result = registration.align(
-      maps.sparse, maps.T_target_source * randomPerturbation(20.0, 1.0, 2), &associations);
+  const RegistrationResult result =
+      alignFromTwentyDegrees(carParkOfSeed6(), &registration, &associations);
   ASSERT_TRUE(result.search_widened) << result.reason;
   ASSERT_FALSE(associations.candidates.empty());
   double farthest = 0.0;
