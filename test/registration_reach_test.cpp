@@ -188,6 +188,26 @@ TEST(Reach, TheWiderSearchKeepsARadiusTheUserFixed) {
   EXPECT_LE(farthest, fixed.radius);
 }
 
+// A time limit that the car park's first alignment (unresolved, 11 deg short) fits within but its
+// wider search does not: the call comes back out of time, saying the wider search was cut, so a
+// caller with a deadline does not read it as the data's verdict (the nodelet would otherwise retry
+// a warm attempt from the seed with no limit). The first call (unlimited) says how long the whole
+// takes; the first alignment is about 60 % of it on this machine, so 80 % cuts the wider search.
+TEST(Reach, AWiderSearchCutByTheTimeLimitComesBackOutOfTime) {
+  PdaRegistration registration{RegistrationParameters()};
+  const RegistrationResult whole = alignFromTwentyDegrees(carParkOfSeed6(), &registration, nullptr);
+  ASSERT_TRUE(whole.search_widened) << whole.reason;
+  RegistrationParameters limited;
+  limited.time_limit_ms = 0.8 * (whole.time_ms - whole.target_index_ms);
+  registration.setParameters(limited);
+  const RegistrationResult cut = alignFromTwentyDegrees(carParkOfSeed6(), &registration, nullptr);
+  EXPECT_FALSE(cut.converged);
+  EXPECT_TRUE(cut.out_of_time);
+  EXPECT_NE(cut.reason.find("a wider search was cut by the time limit"), std::string::npos)
+      << cut.reason;
+  EXPECT_DOUBLE_EQ(registration.parameters().time_limit_ms, limited.time_limit_ms);
+}
+
 // A growing SLAM map's first third (the office's first 1M Kinect points, in scan order) against
 // a whole VLP-16 revolution: from 0.5 deg / 3 cm the approach cycled between two poses 1.4 mm
 // apart, above its 10 epsilons, until the work bound (200 runs, "not converged" 5 mm off). Runs

@@ -7,6 +7,7 @@
 #include <chrono>
 #include <cmath>
 #include <exception>
+#include <sstream>
 #include <string>
 #include <utility>
 
@@ -43,6 +44,18 @@ class NestedAlignment {
   const RegistrationParameters user_;
   bool time_left_ = true;
 };
+
+// A failed result whose nested alignment (the other direction, a wider search) was cut by the
+// user's time limit, or found none of it left, is the deadline's verdict, not the data's: it
+// says so, and a caller with a deadline (the nodelet's warm attempts) does not retry it from
+// the seed as if the data had rejected it.
+void noteCutByTheTimeLimit(const char* nested, double time_limit_ms, RegistrationResult* result) {
+  result->out_of_time = true;
+  std::ostringstream reason;
+  reason << result->reason << "; " << nested << " was cut by the time limit of " << time_limit_ms
+         << " ms";
+  result->reason = reason.str();
+}
 
 // What a nested alignment leaves: its result (and associations) replace the first's when `keep`;
 // either way the answer counts the indexing both did in this call.
@@ -119,21 +132,7 @@ RegistrationResult PdaRegistration::align(const PointList& source,
   try {
     result = alignUnchecked(source, T_target_source_initial, associations);
     trySecondStart(source, T_target_source_initial, start, &result, associations);
-    // PDA's natural direction failed and the source is the denser cloud: its model may hold the
-    // other way round (alignment_direction.hpp). Kept only if that run converges. Only a whole
-    // target is considered (one large enough to crop is a dense map already).
-    const std::shared_ptr<const TargetIndex> target = target_map_.index();
-    if (!result.converged && !result.out_of_time && target && !result.target_cropped &&
-        result.source_points_used >= static_cast<size_t>(parameters_.min_correspondences) &&
-        sourceIsDenser(countInOverlap(target->points(), source, T_target_source_initial))) {
-      Associations swapped_associations;
-      RegistrationResult swapped = alignSwapped(source, T_target_source_initial,
-                                                associations ? &swapped_associations : nullptr);
-      if (swapped.converged) {
-        result = swapped;
-        if (associations) *associations = std::move(swapped_associations);
-      }
-    }
+    tryOtherDirection(source, T_target_source_initial, start, &result, associations);
     tryWiderSearch(source, T_target_source_initial, start, &result, associations);
   } catch (const std::exception& error) {
     if (associations) *associations = Associations();
@@ -176,19 +175,54 @@ void PdaRegistration::trySecondStart(const PointList& source, const Eigen::Isome
               associations);
 }
 
+void PdaRegistration::tryOtherDirection(const PointList& source, const Eigen::Isometry3d& T_initial,
+                                        std::chrono::steady_clock::time_point started,
+                                        RegistrationResult* result, Associations* associations) {
+  // PDA's natural direction failed and the source is the denser cloud: its model may hold the
+  // other way round (alignment_direction.hpp). Kept only if that run converges. Only a whole
+  // target is considered (one large enough to crop is a dense map already).
+  const std::shared_ptr<const TargetIndex> target = target_map_.index();
+  if (result->converged || result->out_of_time || !target || result->target_cropped ||
+      result->source_points_used < static_cast<size_t>(parameters_.min_correspondences) ||
+      !sourceIsDenser(countInOverlap(target->points(), source, T_initial))) {
+    return;
+  }
+  const double time_limit_ms = parameters_.time_limit_ms;
+  const NestedAlignment nested(&parameters_, started);
+  if (!nested.timeLeft()) {
+    noteCutByTheTimeLimit("the other direction", time_limit_ms, result);
+    return;
+  }
+  Associations swapped_associations;
+  RegistrationResult swapped =
+      alignSwapped(source, T_initial, associations ? &swapped_associations : nullptr);
+  if (swapped.converged) {
+    *result = std::move(swapped);
+    if (associations) *associations = std::move(swapped_associations);
+  } else if (swapped.out_of_time) {
+    noteCutByTheTimeLimit("the other direction", time_limit_ms, result);
+  }
+}
+
 void PdaRegistration::tryWiderSearch(const PointList& source, const Eigen::Isometry3d& T_initial,
                                      std::chrono::steady_clock::time_point started,
                                      RegistrationResult* result, Associations* associations) {
   if (!widerSearchWarranted(*result, parameters_)) return;
   const RegistrationParameters user = parameters_;
   const NestedAlignment nested(&parameters_, started);
-  if (!nested.timeLeft()) return;
+  if (!nested.timeLeft()) {
+    noteCutByTheTimeLimit("a wider search", user.time_limit_ms, result);
+    return;
+  }
   parameters_ = widerSearchParameters(parameters_);  // the user's, with what is left of the time
   Associations wide_associations;
   RegistrationResult wide =
       alignUnchecked(source, T_initial, associations ? &wide_associations : nullptr);
   wide.search_widened = true;
-  adoptNested(widerSearchHolds(wide, user), &wide, &wide_associations, result, associations);
+  const bool holds = widerSearchHolds(wide, user);
+  const bool cut = wide.out_of_time;
+  adoptNested(holds, &wide, &wide_associations, result, associations);
+  if (!holds && cut) noteCutByTheTimeLimit("a wider search", user.time_limit_ms, result);
 }
 
 RegistrationResult PdaRegistration::alignSwapped(const PointList& source,

@@ -75,6 +75,11 @@ class PdaRegistration {
   void tryWiderSearch(const PointList& source, const Eigen::Isometry3d& T_initial,
                       std::chrono::steady_clock::time_point started, RegistrationResult* result,
                       Associations* associations);
+  /// A failed result on a source denser than the target: the other way round, with what is left
+  /// of the time limit, kept if that converges (alignment_direction.hpp).
+  void tryOtherDirection(const PointList& source, const Eigen::Isometry3d& T_initial,
+                         std::chrono::steady_clock::time_point started, RegistrationResult* result,
+                         Associations* associations);
   /// The target aligned onto `source` (the denser cloud), answered in the usual direction.
   RegistrationResult alignSwapped(const PointList& source,
                                   const Eigen::Isometry3d& T_target_source_initial,

@@ -65,9 +65,10 @@ struct RegistrationParameters {
   /// stride in storage order would keep a few rings of a scan stored firing by firing) until a
   /// run moves less than 10 epsilons; the final runs (and convergence) use every point. 1 = off.
   int coarse_stride = 4;
-  /// [ms] wall-clock bound on an alignment: no run starts after it, and a result still moving then
-  /// comes back "out of time", not converged. 0 = none (the nodelet sets it for warm alignments:
-  /// a running system's answer is worth little once the next scan is waiting).
+  /// [ms] wall-clock bound on an alignment, the other direction and a wider search included: no run
+  /// starts after it, and a result still moving then comes back "out of time", not converged. 0 =
+  /// none (the nodelet sets it for warm alignments: a running system's answer is worth little once
+  /// the next scan is waiting).
   double time_limit_ms = 0.0;
   double translation_epsilon = 1e-4;  ///< [length] converged when a step moves less than this
   double rotation_epsilon = 1e-4;     ///< [rad]    ... and rotates less than this

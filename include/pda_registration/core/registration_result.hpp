@@ -21,7 +21,9 @@ struct RegistrationResult {
 
   bool converged = false;
   std::string reason;        ///< why not converged (empty when converged)
-  bool out_of_time = false;  ///< stopped by time_limit_ms before it came to rest
+  /// Stopped by time_limit_ms before it came to rest, or failed with the other direction or a
+  /// wider search still to try when the limit cut them (the reason says which).
+  bool out_of_time = false;
 
   int runs = 0;           ///< candidate-set computations (outer loop)
   int em_iterations = 0;  ///< E/M iterations summed over runs
