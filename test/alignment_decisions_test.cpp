@@ -169,13 +169,18 @@ Eigen::Isometry3d yawed(double degrees, const Eigen::Vector3d& translation) {
   return T;
 }
 
-TEST(SecondStart, KeepsTheFoundRotationWithTheCentroidWhereTheSeedPutIt) {
+TEST(SecondStart, KeepsTheFoundRotationWithTheOriginThenTheCentroidWhereTheSeedPutThem) {
   const Point centroid(3.0, 1.0, 0.5);
   const Eigen::Isometry3d seed = yawed(5.0, Eigen::Vector3d(2.0, 0.0, 0.0));
   const Eigen::Isometry3d found = yawed(25.0, Eigen::Vector3d(3.4, -0.8, 0.1));
-  const Eigen::Isometry3d start = secondStartPose(found, seed, centroid);
-  EXPECT_TRUE(start.linear().isApprox(found.linear()));
-  EXPECT_LT((start * centroid - seed * centroid).norm(), 1e-12);
+  const auto starts = secondStartPoses(found, seed, centroid);
+  for (const Eigen::Isometry3d& start : starts) {
+    EXPECT_TRUE(start.linear().isApprox(found.linear()));
+  }
+  EXPECT_LT((starts[0].translation() - seed.translation()).norm(), 1e-12);
+  EXPECT_LT((starts[1] * centroid - seed * centroid).norm(), 1e-12);
+  // 20 degrees between seed and found swing the centroid, 3.2 m from the origin, by 1.1 m.
+  EXPECT_GT((starts[0] * centroid - starts[1] * centroid).norm(), 1.0);
 }
 
 TEST(SecondStart, OnlyARestWithNuAtItsFloorThatMovedTheCentroidBeyondTheRadius) {
@@ -218,6 +223,9 @@ TEST(SecondStart, TheFirstBasinHoldsPosesThatMoveThePointsByLessThanTheRadiusInR
   turned.translation() = basin.T_found * basin.centroid + Eigen::Vector3d(0.15, 0.0, 0.0) -
                          turned.linear() * basin.centroid;
   EXPECT_TRUE(basin.contains(turned));
+  // The same bound between any two poses: a start near one already tried is the same hypothesis.
+  EXPECT_TRUE(basin.near(turned, basin.T_found));
+  EXPECT_FALSE(basin.near(yawed(25.0, Eigen::Vector3d(2.0, -0.8, 0.1)), turned));
 }
 
 TEST(SecondStart, ReplacesTheFirstOnlyWhenConvergedAndBetterSupported) {

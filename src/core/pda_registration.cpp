@@ -165,14 +165,22 @@ void PdaRegistration::trySecondStart(const PointList& source, const Eigen::Isome
   if (!secondStartWarranted(*result, parameters_, T_initial, centroid, basin.final_radius)) return;
   for (const Point& point : used) basin.source_rms_radius += (point - centroid).squaredNorm();
   basin.source_rms_radius = std::sqrt(basin.source_rms_radius / static_cast<double>(used.size()));
-  const NestedAlignment nested(&parameters_, started);
-  if (!nested.timeLeft()) return;
-  Associations second_associations;
-  RegistrationResult second =
-      alignUnchecked(source, secondStartPose(result->T_target_source, T_initial, centroid),
-                     associations ? &second_associations : nullptr, &basin);
-  adoptNested(secondStartIsBetter(*result, second), &second, &second_associations, result,
-              associations);
+  const Eigen::Isometry3d* tried = nullptr;
+  const auto starts = secondStartPoses(result->T_target_source, T_initial, centroid);
+  for (const Eigen::Isometry3d& start : starts) {
+    // A start in the first result's basin would only find it again; one near the start just
+    // tried is the same hypothesis.
+    if (basin.contains(start) || (tried && basin.near(*tried, start))) continue;
+    tried = &start;
+    const NestedAlignment nested(&parameters_, started);
+    if (!nested.timeLeft()) return;
+    Associations second_associations;
+    RegistrationResult second =
+        alignUnchecked(source, start, associations ? &second_associations : nullptr, &basin);
+    const bool better = secondStartIsBetter(*result, second);
+    adoptNested(better, &second, &second_associations, result, associations);
+    if (better) return;
+  }
 }
 
 void PdaRegistration::tryOtherDirection(const PointList& source, const Eigen::Isometry3d& T_initial,

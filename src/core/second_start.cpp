@@ -6,12 +6,17 @@
 
 namespace pda_registration {
 
-Eigen::Isometry3d secondStartPose(const Eigen::Isometry3d& T_found,
-                                  const Eigen::Isometry3d& T_initial, const Point& centroid) {
-  Eigen::Isometry3d start = Eigen::Isometry3d::Identity();
-  start.linear() = T_found.linear();
-  start.translation() = T_initial * centroid - T_found.linear() * centroid;
-  return start;
+std::array<Eigen::Isometry3d, 2> secondStartPoses(const Eigen::Isometry3d& T_found,
+                                                  const Eigen::Isometry3d& T_initial,
+                                                  const Point& centroid) {
+  std::array<Eigen::Isometry3d, 2> starts;
+  for (Eigen::Isometry3d& start : starts) {
+    start = Eigen::Isometry3d::Identity();
+    start.linear() = T_found.linear();
+  }
+  starts[0].translation() = T_initial.translation();
+  starts[1].translation() = T_initial * centroid - T_found.linear() * centroid;
+  return starts;
 }
 
 bool secondStartWarranted(const RegistrationResult& first, const RegistrationParameters& p,
@@ -24,9 +29,9 @@ bool secondStartWarranted(const RegistrationResult& first, const RegistrationPar
   return centroid_moved > final_radius;
 }
 
-bool FirstResultBasin::contains(const Eigen::Isometry3d& T) const {
-  const double shift = (T * centroid - T_found * centroid).norm();
-  const double angle = Eigen::AngleAxisd(T.linear() * T_found.linear().transpose()).angle();
+bool FirstResultBasin::near(const Eigen::Isometry3d& a, const Eigen::Isometry3d& b) const {
+  const double shift = (a * centroid - b * centroid).norm();
+  const double angle = Eigen::AngleAxisd(b.linear() * a.linear().transpose()).angle();
   // Mean of |(R - I)(p - c)|^2 over the points is at most angle^2 times their mean squared
   // distance from the centroid, and the centroid's term adds to it (the cross term averages out).
   return std::hypot(shift, angle * source_rms_radius) < final_radius;

@@ -66,7 +66,8 @@ class PdaRegistration {
                                     const Eigen::Isometry3d& T_target_source_initial,
                                     Associations* associations,
                                     const FirstResultBasin* abandon_in = nullptr);
-  /// A second alignment from the rotation the first found, kept if better (second_start.hpp).
+  /// Second alignments from the rotation the first found (two starts, in turn), the first that is
+  /// better kept (second_start.hpp).
   void trySecondStart(const PointList& source, const Eigen::Isometry3d& T_initial,
                       std::chrono::steady_clock::time_point started, RegistrationResult* result,
                       Associations* associations);
