@@ -47,3 +47,8 @@ target_link_libraries(warp_rigid_fit_test
 catkin_add_gtest(registration_reach_test registration_reach_test.cpp)
 target_compile_options(registration_reach_test PRIVATE ${PDA_WARNINGS})
 target_link_libraries(registration_reach_test pda_simulated_cases gtest_main)
+
+# The least-squares polish over a warped overlap: when it applies, the warped fragment pair.
+catkin_add_gtest(warp_polish_test warp_polish_test.cpp)
+target_compile_options(warp_polish_test PRIVATE ${PDA_WARNINGS})
+target_link_libraries(warp_polish_test pda_registration_simulation gtest_main)

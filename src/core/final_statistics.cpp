@@ -90,6 +90,7 @@ void fillFinalStatistics(const PointList& source, const TargetIndex& index,
   computePoseCovariance(correspondences, state.T, state.sigma_squared, state.nu, &result->covariance,
                         &terms);
   result->covariance_correlation_length = terms.cell_edge;
+  result->disagreeing_halves = terms.disagreeing_cuts;
   result->covariance_ms =
       std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - covariance_start)
           .count();

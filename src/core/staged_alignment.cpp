@@ -17,6 +17,7 @@
 #include "pda_registration/core/run_extrapolation.hpp"
 #include "pda_registration/core/run_rest.hpp"
 #include "pda_registration/core/source_budget.hpp"
+#include "pda_registration/core/warp_polish.hpp"
 
 namespace pda_registration {
 namespace {
@@ -249,6 +250,15 @@ RegistrationResult PdaRegistration::alignUnchecked(const PointList& source_input
     findCandidateSets(*index, source, T, p.k, p.radius, p.threads, &workspace_.search, &candidates);
   }
   fillFinalStatistics(source, *index, *normal_map, p, state, &workspace_, &result, associations);
+  if (warpPolishWarranted(result, p, state.nu) &&
+      polishOverAWarp(*index, source, *normal_map, p, step_metric, outOfTime, &workspace_, &state,
+                      &result.runs, &result.em_iterations)) {
+    result.T_target_source = state.T;
+    result.sigma = std::sqrt(state.sigma_squared);
+    result.nu = state.nu;
+    result.warp_polished = true;
+    fillFinalStatistics(source, *index, *normal_map, p, state, &workspace_, &result, associations);
+  }
 
   judgeConvergence(p, result.converged, last_run_step, &result);
   return result;

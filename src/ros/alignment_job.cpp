@@ -173,6 +173,7 @@ void AlignmentJob::run(const SparseJob& job, const LiveParameters& live) {
     s.target_cropped = result.target_cropped;
     s.roles_swapped = result.roles_swapped;
     s.search_widened = result.search_widened;
+    s.warp_polished = result.warp_polished;
     s.source_points_used = result.source_points_used;
     s.source_points_received = source_points->size();
     s.source_budget = static_cast<size_t>(parameters.max_source_points);

@@ -122,6 +122,7 @@ int main(int argc, char** argv) {
     json.add("normal_voxel_size", r.normal_voxel_size);
     json.add("roles_swapped", r.roles_swapped);
     json.add("search_widened", r.search_widened);
+    json.add("warp_polished", r.warp_polished);
     json.add("target_index_ms", r.target_index_ms);
     json.add("source_with_candidates", r.source_points_with_candidates);
     json.add("degeneracy_ratio", r.degeneracy_ratio);

@@ -18,6 +18,9 @@ struct RegistrationResult {
   /// largest level (0: noise term only)
   double covariance_correlation_length = 0.0;
   double covariance_ms = 0.0;  ///< time spent on it (part of time_ms)
+  /// Cuts of the overlap whose halves disagreed beyond the covariance (pose_covariance.hpp, 0-3):
+  /// a map warped or bent as a whole.
+  size_t disagreeing_halves = 0;
 
   bool converged = false;
   std::string reason;        ///< why not converged (empty when converged)
@@ -46,6 +49,9 @@ struct RegistrationResult {
   /// The first alignment ended unresolved (sigma as wide as its search); this is the one from the
   /// seed with the radius widened (wider_search.hpp; its overlap and support within that radius).
   bool search_widened = false;
+  /// The halves of the overlap disagreed: the result was refined on with Gaussian weights, to the
+  /// least-squares fit over the warped overlap (warp_polish.hpp); nu is then infinity.
+  bool warp_polished = false;
   double target_index_ms = 0.0;  ///< time this call spent (re)indexing the target (in time_ms)
   size_t target_points_dropped = 0;          ///< NaN/Inf target points dropped
   size_t source_points_with_candidates = 0;  ///< in the last run
