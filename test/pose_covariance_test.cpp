@@ -279,7 +279,7 @@ TEST(PoseCovariance, SimulatedOfficeErrorIsWithinHalfToTwiceTheReportedSigma) {
 // --distortion 0.01); the ground truth is the warp's best rigid fit. The halves of the overlap
 // disagree as wholes, at a scale the correlogram does not reach: before the cut halves were
 // tested (map_scale_spread.hpp), sigma was 3.5x smaller than the translation error here; now
-// 1.8x (pda_covariance_check over 3 noise draws x 2 perturbations: 1.72). The bound asserted is
+// 1.6x (1.8x before the least-squares polish of warp_polish.hpp moved the estimate). The bound is
 // the hard one: no sigma more than 3x smaller than the error.
 TEST(PoseCovariance, WarpedRgbdFragmentSigmaIsNotThreeTimesSmallerThanTheError) {
   simulation::MapSimulationOptions options;
