@@ -212,16 +212,27 @@ TEST(Reach, TheWiderSearchKeepsARadiusTheUserFixed) {
 // A time limit that the car park's first alignment (unresolved, 11 deg short) fits within but its
 // wider search does not: the call comes back out of time, saying the wider search was cut, so a
 // caller with a deadline does not read it as the data's verdict (the nodelet would otherwise retry
-// a warm attempt from the seed with no limit). The first call (unlimited) says how long the whole
-// takes; the first alignment is about 60 % of it on this machine, so 80 % cuts the wider search.
+// a warm attempt from the seed with no limit). An unlimited call says how long the whole takes;
+// the first alignment is about 60 % of it, so 75 % cuts the wider search. The unlimited call is
+// timed warm, as the limited one runs: the first call on a target fills its normal map lazily
+// (the limited call then came in under 80 % of the first call's time once, on a loaded machine).
+// A load that changes between the two calls can still move the cut out of the wider search: up
+// to three attempts, each timed afresh; the old behaviour (out_of_time false) fails all three.
 TEST(Reach, AWiderSearchCutByTheTimeLimitComesBackOutOfTime) {
   PdaRegistration registration{RegistrationParameters()};
-  const RegistrationResult whole = alignFromTwentyDegrees(carParkOfSeed6(), &registration, nullptr);
-  ASSERT_TRUE(whole.search_widened) << whole.reason;
+  alignFromTwentyDegrees(carParkOfSeed6(), &registration, nullptr);  // warms the normal map
   RegistrationParameters limited;
-  limited.time_limit_ms = 0.8 * (whole.time_ms - whole.target_index_ms);
-  registration.setParameters(limited);
-  const RegistrationResult cut = alignFromTwentyDegrees(carParkOfSeed6(), &registration, nullptr);
+  RegistrationResult cut;
+  for (int attempt = 0; attempt < 3; ++attempt) {
+    registration.setParameters(RegistrationParameters());
+    const RegistrationResult whole =
+        alignFromTwentyDegrees(carParkOfSeed6(), &registration, nullptr);
+    ASSERT_TRUE(whole.search_widened) << whole.reason;
+    limited.time_limit_ms = 0.75 * (whole.time_ms - whole.target_index_ms);
+    registration.setParameters(limited);
+    cut = alignFromTwentyDegrees(carParkOfSeed6(), &registration, nullptr);
+    if (cut.out_of_time && cut.reason.find("a wider search was cut") != std::string::npos) break;
+  }
   EXPECT_FALSE(cut.converged);
   EXPECT_TRUE(cut.out_of_time);
   EXPECT_NE(cut.reason.find("a wider search was cut by the time limit"), std::string::npos)
