@@ -334,8 +334,8 @@ TEST(EmRun, ExtrapolatedStepsEndWherePlainEmConvergesInFewerIterations) {
   bool settled = false;
   int iterations = 0;
   const PoseStep step_metric = PoseStep::over(source);
-  ASSERT_TRUE(runEm(source, SurfaceNormalMap(), p, &step_metric, &workspace, &state, &settled,
-                    &iterations));
+  ASSERT_TRUE(runEm(source, SurfaceNormalMap(), NormalLookup::kAtCandidate, p, &step_metric,
+                    &workspace, &state, &settled, &iterations));
   EXPECT_TRUE(settled);
   EXPECT_LT(iterations, plain_iterations * 2 / 3) << "plain EM: " << plain_iterations;
   const Increment off = incrementBetween(plain, state.T);

@@ -43,29 +43,37 @@ bool runMStep(const WeightedCorrespondences& correspondences, const Registration
 }  // namespace
 
 void lookupNormals(const SurfaceNormalMap& map, const PointList& source, const Eigen::Isometry3d& T,
-                   int threads, PointList* normals, const CandidateSets* only_with_candidates,
+                   int threads, const CandidateSets& candidates, NormalLookup normals_at,
+                   bool every_point, PointList* normals,
                    std::vector<SurfaceNormalMap::Memo>* memos) {
   normals->resize(source.size());
   if (memos && memos->size() < source.size()) memos->resize(source.size());
   SurfaceNormalMap::Memo* memo = memos ? memos->data() : nullptr;
 #pragma omp parallel for schedule(static) num_threads(std::max(threads, 1))
   for (long long j = 0; j < static_cast<long long>(source.size()); ++j) {
-    const bool wanted =
-        !only_with_candidates || (static_cast<size_t>(j) < only_with_candidates->sourceCount() &&
-                                  only_with_candidates->candidateCount(j) > 0);
-    (*normals)[j] = wanted ? map.normalAt(T * source[j], memo ? memo + j : nullptr) : Point::Zero();
+    const bool has_candidates =
+        static_cast<size_t>(j) < candidates.sourceCount() && candidates.candidateCount(j) > 0;
+    SurfaceNormalMap::Memo* point_memo = memo ? memo + j : nullptr;
+    if (has_candidates && normals_at == NormalLookup::kAtCandidate) {
+      // The candidates are nearest first.
+      (*normals)[j] = map.normalAt(candidates.points[candidates.offsets[j]], point_memo);
+    } else if (has_candidates || every_point) {
+      (*normals)[j] = map.normalAt(T * source[j], point_memo);
+    } else {
+      (*normals)[j] = Point::Zero();
+    }
   }
 }
 
 double computeShapeInputs(const SurfaceNormalMap& normal_map, const PointList& source,
                           const CandidateSets& candidates, const Eigen::Isometry3d& T,
-                          const RegistrationParameters& p, PointList* normals,
-                          std::vector<double>* spread, bool every_point,
+                          const RegistrationParameters& p, NormalLookup normals_at,
+                          bool every_point, PointList* normals, std::vector<double>* spread,
                           std::vector<SurfaceNormalMap::Memo>* memos) {
   normals->clear();
   spread->clear();
   if (p.surface_anisotropy > 1.0) {
-    lookupNormals(normal_map, source, T, p.threads, normals, every_point ? nullptr : &candidates,
+    lookupNormals(normal_map, source, T, p.threads, candidates, normals_at, every_point, normals,
                   memos);
   }
   if (!usesSamplingModel(p)) return 0.0;
@@ -75,16 +83,16 @@ double computeShapeInputs(const SurfaceNormalMap& normal_map, const PointList& s
 
 // One run: EM on the workspace's candidate sets (fixed during the run) until a step is below the
 // epsilons or max_em_iterations. Returns false when the M-step cannot solve.
-bool runEm(const PointList& source, const SurfaceNormalMap& normal_map,
+bool runEm(const PointList& source, const SurfaceNormalMap& normal_map, NormalLookup normals_at,
            const RegistrationParameters& p, const PoseStep* step_metric,
            RegistrationWorkspace* workspace, EmState* state, bool* settled, int* em_iterations) {
   const bool estimate_sigma = p.sigma_mode == SigmaMode::kEstimated;
   const CandidateSets& candidates = workspace->candidates;
   // The normals go straight into the shapes, which keep them for every iteration of the run.
   PointList& normals = workspace->shapes.normal;
-  const double thickness =
-      computeShapeInputs(normal_map, source, candidates, state->T, p, &normals, &workspace->spread,
-                         /*every_point=*/false, &workspace->normal_memos);
+  const double thickness = computeShapeInputs(
+      normal_map, source, candidates, state->T, p, normals_at,
+      /*every_point=*/false, &normals, &workspace->spread, &workspace->normal_memos);
   // A floor keeps the t-weights defined when the clouds match exactly (sigma -> 0); the sampling
   // model's is the target's own thickness about its surface.
   const double sigma_squared_floor = std::max(std::pow(1e-6 * p.radius, 2), thickness);

@@ -69,12 +69,15 @@ void fillFinalStatistics(const PointList& source, const TargetIndex& index,
                          const EmState& state, RegistrationWorkspace* workspace,
                          RegistrationResult* result, Associations* associations) {
   const CandidateSets& candidates = workspace->candidates;
-  computeShapeInputs(normal_map, source, candidates, state.T, p, &workspace->normals,
-                     &workspace->spread, /*every_point=*/true, &workspace->normal_memos);
+  // The refine runs' normals (at the candidates), as the last run's E-step had them.
+  computeShapeInputs(normal_map, source, candidates, state.T, p, NormalLookup::kAtCandidate,
+                     /*every_point=*/true, &workspace->normals, &workspace->spread,
+                     &workspace->normal_memos);
   // The degeneracy check needs the normals even when the noise model does not.
   PointList isotropic_normals;
   if (workspace->normals.empty()) {
-    lookupNormals(normal_map, source, state.T, p.threads, &isotropic_normals);
+    lookupNormals(normal_map, source, state.T, p.threads, candidates, NormalLookup::kAtCandidate,
+                  /*every_point=*/true, &isotropic_normals);
   }
   const PointList& normals = workspace->normals.empty() ? isotropic_normals : workspace->normals;
   makeNoiseShapes(workspace->normals, workspace->spread, state.sigma_squared, p,

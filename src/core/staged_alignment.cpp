@@ -180,7 +180,9 @@ RegistrationResult PdaRegistration::alignUnchecked(const PointList& source_input
     // EM's own steps are extrapolated once the approach has chosen the basin: there, tails of
     // steps as wide as sigma sent a VLP-16 scan pair from 10 deg 1.6 m along its slide.
     const PoseStep* em_step_metric = stage == Stage::kApproach ? nullptr : &step_metric;
-    if (!runEm(active, *normal_map, run_parameters, em_step_metric, &workspace_, &state,
+    const NormalLookup normals_at =
+        stage == Stage::kRefine ? NormalLookup::kAtCandidate : NormalLookup::kAtPoint;
+    if (!runEm(active, *normal_map, normals_at, run_parameters, em_step_metric, &workspace_, &state,
                &em_settled, &result.em_iterations)) {
       result.reason = "M-step failed: the weighted correspondences do not constrain the pose";
       return result;

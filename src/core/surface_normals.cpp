@@ -109,16 +109,24 @@ void SurfaceNormalMap::refit(int level, std::vector<uint64_t> keys) {
     // The parents of what changed: each re-merged from its eight children in a fixed order, so a
     // parent's moments do not depend on the order its children were created in.
     Level& up = levels_[level + 1];
-    std::vector<Cell> parents;
+    // Each parent once (up to eight children name it): sorted by key, stably, so that of two
+    // parents whose keys wrap onto one the first named is still the first merged.
+    std::vector<std::pair<uint64_t, Cell>> parents;
     parents.reserve(keys.size());
     for (const uint64_t key : keys) {
-      const Cell& c = here.moments.at(key).cell;
-      parents.push_back(parentCell(c));
+      const Cell parent = parentCell(here.moments.at(key).cell);
+      parents.emplace_back(voxelCellKey(parent), parent);
     }
+    std::stable_sort(parents.begin(), parents.end(),
+                     [](const auto& a, const auto& b) { return a.first < b.first; });
+    parents.erase(std::unique(parents.begin(), parents.end(),
+                              [](const auto& a, const auto& b) {
+                                return a.first == b.first && a.second == b.second;
+                              }),
+                  parents.end());
     std::vector<uint64_t> parent_keys;
     parent_keys.reserve(parents.size());
-    for (const Cell& parent : parents) {
-      const uint64_t parent_key = voxelCellKey(parent);
+    for (const auto& [parent_key, parent] : parents) {
       Moments merged;
       merged.cell = parent;
       for (int child = 0; child < 8; ++child) {

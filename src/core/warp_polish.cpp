@@ -33,8 +33,8 @@ bool polishOverAWarp(const TargetIndex& index, const PointList& source,
     const Eigen::Isometry3d T_run_start = polished.T;
     bool settled = false;
     ++*runs;
-    if (!runEm(source, normal_map, gaussian, &step_metric, workspace, &polished, &settled,
-               em_iterations)) {
+    if (!runEm(source, normal_map, NormalLookup::kAtCandidate, gaussian, &step_metric, workspace,
+               &polished, &settled, em_iterations)) {
       return false;
     }
     if (isSmall(incrementBetween(T_run_start, polished.T), p) ||

@@ -32,33 +32,48 @@ struct EmState {
   double nu = 5.0;             ///< Student-t degrees of freedom (estimated or the parameter)
 };
 
+/// Where a source point's target normal is read from the normal map. At its nearest candidate, a
+/// sample of the surface the point is associated with, the normal is the target's own and changes
+/// only when that candidate does; at the moved point it is whatever surface the point's voxel
+/// holds, and it jumps whenever the point crosses into another voxel. The refine runs (and the
+/// final statistics) read it at the candidate: at the point, those jumps kept a run or two of
+/// millimetre steps going after the pose had settled, and near a surface's edge or on a warped
+/// map the point's voxel gave another surface's normal (a warped RGB-D fragment pair 6.7 -> 5.1
+/// cm). The approach and settle runs read it at the point: there the nearest sample is often on
+/// the wrong surface, and its shape would let the point slide along it (the VLP-16 office
+/// lattice from 10 deg: 3 of 10 false rests at the candidate, none at the point).
+enum class NormalLookup {
+  kAtPoint,
+  kAtCandidate,
+};
+
 /// One run: EM on the workspace's candidate sets (fixed during the run) until a step is below
 /// the epsilons (*settled = true) or max_em_iterations. With a `step_metric`, two successive
 /// steps that agree are extrapolated to their tail (run_extrapolation.hpp), compared in it; null:
 /// plain EM. Counts iterations into *em_iterations. Returns false when the M-step cannot solve.
-bool runEm(const PointList& source, const SurfaceNormalMap& normal_map,
+bool runEm(const PointList& source, const SurfaceNormalMap& normal_map, NormalLookup normals_at,
            const RegistrationParameters& p, const PoseStep* step_metric,
            RegistrationWorkspace* workspace, EmState* state, bool* settled, int* em_iterations);
 
-/// The target surface normal at every moved source point (zero where unknown). With
-/// `only_with_candidates`, only at the points that have candidates there (zero elsewhere): a
-/// run's E-step reads no other, and on a partial overlap most points have none. `memos`, when
-/// given, keeps each point's last answer (SurfaceNormalMap::Memo; resized as needed): runs move
-/// the points little, and most stay in their voxel.
+/// The target surface normal of every source point (zero where unknown): read `normals_at` for
+/// the points that have candidates, at the moved point for the others when `every_point` (the
+/// final statistics' degeneracy check reads them all), zero otherwise (a run's E-step reads no
+/// other, and on a partial overlap most points have none). `memos`, when given, keeps each
+/// point's last answer (SurfaceNormalMap::Memo; resized as needed): runs move the points little,
+/// and most stay in their voxel.
 void lookupNormals(const SurfaceNormalMap& map, const PointList& source, const Eigen::Isometry3d& T,
-                   int threads, PointList* normals,
-                   const CandidateSets* only_with_candidates = nullptr,
+                   int threads, const CandidateSets& candidates, NormalLookup normals_at,
+                   bool every_point, PointList* normals,
                    std::vector<SurfaceNormalMap::Memo>* memos = nullptr);
 
-/// What the noise shapes of one run are made from: the target normals at the moved source points
-/// (not needed by the isotropic model: left empty) and the candidates' sampling spread (sampling
-/// model only). Returns the target's thickness, sigma^2's floor from the target's own noise
-/// (sampling model; 0 otherwise). The normals are looked up at the points with candidates only,
-/// unless `every_point` (the final statistics' degeneracy check reads them all).
+/// What the noise shapes of one run are made from: the source points' target normals
+/// (lookupNormals; not needed by the isotropic model: left empty) and the candidates' sampling
+/// spread (sampling model only). Returns the target's thickness, sigma^2's floor from the
+/// target's own noise (sampling model; 0 otherwise).
 double computeShapeInputs(const SurfaceNormalMap& normal_map, const PointList& source,
                           const CandidateSets& candidates, const Eigen::Isometry3d& T,
-                          const RegistrationParameters& p, PointList* normals,
-                          std::vector<double>* spread, bool every_point = false,
+                          const RegistrationParameters& p, NormalLookup normals_at,
+                          bool every_point, PointList* normals, std::vector<double>* spread,
                           std::vector<SurfaceNormalMap::Memo>* memos = nullptr);
 
 }  // namespace pda_registration
