@@ -1,7 +1,7 @@
 #pragma once
 // Detects geometry that cannot pin down all six degrees of freedom (a single plane, a corridor,
 // a line). Point-to-point objectives hide this (their Hessian is always full rank), so the test
-// uses the target's surface normals at the moved source points: the point-to-plane constraint
+// uses the source points' target surface normals (em_run.hpp): the point-to-plane constraint
 // matrix sum_j a_j a_j^T, a_j = [n_j; (q_j - c) x n_j / L], with q_j the moved source points, c
 // their centroid and L their RMS radius (so rotations and translations compare in length units).
 // Its smallest/largest eigenvalue ratio is ~0 along unconstrained directions.

@@ -1,7 +1,7 @@
 #pragma once
 // One run of the EM loop (paper Sec. IV) on fixed candidate sets, and the pieces the registration
-// and its final statistics share: the step between two estimates, the target normals at the
-// moved source points, the inputs of the noise shapes.
+// and its final statistics share: the step between two estimates, the source points' target
+// normals, the inputs of the noise shapes.
 
 #include <Eigen/Geometry>
 #include <vector>

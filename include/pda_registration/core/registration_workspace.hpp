@@ -18,7 +18,7 @@ struct RegistrationWorkspace {
   PointList coarse_source;  ///< every coarse_stride-th of them
   CandidateSearchBuffers search;
   CandidateSets candidates;
-  PointList normals;           ///< target normal at each moved source point (final statistics;
+  PointList normals;           ///< each source point's target normal (final statistics;
                                ///< a run keeps its own in shapes.normal)
   std::vector<double> spread;  ///< candidates' sampling spread (one run)
   /// Each source point's last normal lookup, slot by slot (valid only for the voxel and map
