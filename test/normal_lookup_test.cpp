@@ -8,11 +8,8 @@
 
 #include "pda_registration/core/candidate_sets.hpp"
 #include "pda_registration/core/em_run.hpp"
-#include "pda_registration/core/error_metrics.hpp"
-#include "pda_registration/core/pda_registration.hpp"
-#include "pda_registration/core/perturbation.hpp"
 #include "pda_registration/core/target_index.hpp"
-#include "pda_registration/simulation/map_simulation.hpp"
+#include "test_support/simulated_cases.hpp"
 
 namespace pda_registration {
 namespace {
@@ -73,18 +70,12 @@ TEST(NormalLookup, ReadsAtTheNearestCandidateOrAtTheMovedPoint) {
 // overlap. Read at the moved point, a point beside a surface's edge or pushed off it by the warp
 // took its voxel's normal, often another surface's.
 double warpedFragmentError(int layout) {
-  simulation::MapSimulationOptions options;
-  options.seed = layout;
-  options.sparse_sensor = simulation::SparseSensor::kKinectFragment;
-  options.distortion = 0.01;
-  const simulation::SimulatedMaps maps = simulation::simulateMaps(options);
-  PdaRegistration registration((RegistrationParameters()));
-  EXPECT_TRUE(registration.setTarget(maps.dense));
-  const Eigen::Isometry3d initial = maps.T_target_source * randomPerturbation(5.0, 0.25, 1);
-  const RegistrationResult result = registration.align(maps.sparse, initial);
-  EXPECT_TRUE(result.converged) << result.reason;
+  const simulation::SimulatedMaps maps =
+      simulation::simulateMaps(testing_support::rgbdFragmentOptions(layout, 0.01));
+  RegistrationResult result;
   const double error =
-      poseError(maps.sparse, result.T_target_source, maps.T_target_source).mean_distance;
+      testing_support::alignedError(maps, RegistrationParameters(), 5.0, 0.25, 1, &result);
+  EXPECT_TRUE(result.converged) << result.reason;
   std::printf("warped fragments, layout %d: %.4f m from the fit, %d runs\n", layout, error,
               result.runs);
   return error;

@@ -22,6 +22,7 @@ namespace {
 
 using testing_support::alignedError;
 using testing_support::latticeMaps;
+using testing_support::rgbdFragmentOptions;
 
 // The approach stage aligns a quarter of the source. Taken as every 4th point in storage order,
 // a scan stored firing by firing (all lasers of one azimuth, then the next) gave 8 of 32 rings.
@@ -89,10 +90,7 @@ TEST(Reach, RgbdFragmentsAlignWithDefaultsFromTenDegrees) {
 // wide as sigma (0.38 and 0.19 m at sigma 0.32 m), past the ridge of the true basin. The approach
 // now takes a tail only when three steps agree (run_extrapolation.hpp); PCL's GICP found it too.
 TEST(Reach, RgbdFragmentsAreNotExtrapolatedOutOfTheirBasin) {
-  MapSimulationOptions options;
-  options.seed = 4;
-  options.sparse_sensor = SparseSensor::kKinectFragment;
-  const SimulatedMaps maps = simulateMaps(options);
+  const SimulatedMaps maps = simulateMaps(rgbdFragmentOptions(4));
   RegistrationResult result;
   const double error = alignedError(maps, RegistrationParameters(), 10.0, 0.5, 4, &result);
   EXPECT_TRUE(result.converged) << result.reason;
@@ -101,12 +99,7 @@ TEST(Reach, RgbdFragmentsAreNotExtrapolatedOutOfTheirBasin) {
 
 // The RGB-D fragment pair of seed 3, simulated once.
 const SimulatedMaps& fragmentsOfSeed3() {
-  static const SimulatedMaps maps = [] {
-    MapSimulationOptions options;
-    options.seed = 3;
-    options.sparse_sensor = SparseSensor::kKinectFragment;
-    return simulateMaps(options);
-  }();
+  static const SimulatedMaps maps = simulateMaps(rgbdFragmentOptions(3));
   return maps;
 }
 

@@ -51,9 +51,9 @@ target_link_libraries(registration_reach_test pda_simulated_cases gtest_main)
 # The least-squares polish over a warped overlap: when it applies, the warped fragment pair.
 catkin_add_gtest(warp_polish_test warp_polish_test.cpp)
 target_compile_options(warp_polish_test PRIVATE ${PDA_WARNINGS})
-target_link_libraries(warp_polish_test pda_registration_simulation gtest_main)
+target_link_libraries(warp_polish_test pda_simulated_cases gtest_main)
 
 # Where the noise model reads a point's target normal: the lookup, warped fragment pairs.
 catkin_add_gtest(normal_lookup_test normal_lookup_test.cpp)
 target_compile_options(normal_lookup_test PRIVATE ${PDA_WARNINGS})
-target_link_libraries(normal_lookup_test pda_registration_simulation gtest_main)
+target_link_libraries(normal_lookup_test pda_simulated_cases gtest_main)

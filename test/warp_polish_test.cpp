@@ -8,10 +8,7 @@
 #include <cstdio>
 #include <limits>
 
-#include "pda_registration/core/error_metrics.hpp"
-#include "pda_registration/core/pda_registration.hpp"
-#include "pda_registration/core/perturbation.hpp"
-#include "pda_registration/simulation/map_simulation.hpp"
+#include "test_support/simulated_cases.hpp"
 
 namespace pda_registration {
 namespace {
@@ -49,16 +46,10 @@ TEST(WarpPolish, WarrantedOnlyForAConvergedResultWhoseHalvesDisagree) {
 // 0.01): aligned from 5 deg / 0.25 m, the error is eq. 22 from the ground truth (for the warped
 // pair the warp's least-squares rigid fit over the overlap).
 RegistrationResult alignFragments(double distortion, double* error) {
-  simulation::MapSimulationOptions options;
-  options.seed = 2;
-  options.sparse_sensor = simulation::SparseSensor::kKinectFragment;
-  options.distortion = distortion;
-  const simulation::SimulatedMaps maps = simulation::simulateMaps(options);
-  PdaRegistration registration((RegistrationParameters()));
-  EXPECT_TRUE(registration.setTarget(maps.dense));
-  const Eigen::Isometry3d initial = maps.T_target_source * randomPerturbation(5.0, 0.25, 1);
-  const RegistrationResult result = registration.align(maps.sparse, initial);
-  *error = poseError(maps.sparse, result.T_target_source, maps.T_target_source).mean_distance;
+  const simulation::SimulatedMaps maps =
+      simulation::simulateMaps(testing_support::rgbdFragmentOptions(2, distortion));
+  RegistrationResult result;
+  *error = testing_support::alignedError(maps, RegistrationParameters(), 5.0, 0.25, 1, &result);
   return result;
 }
 

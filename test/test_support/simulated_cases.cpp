@@ -19,6 +19,14 @@ MapSimulationOptions smallOfficeOptions(uint64_t seed) {
   return options;
 }
 
+MapSimulationOptions rgbdFragmentOptions(uint64_t seed, double distortion) {
+  MapSimulationOptions options;
+  options.seed = seed;
+  options.sparse_sensor = SparseSensor::kKinectFragment;
+  options.distortion = distortion;
+  return options;
+}
+
 MapSimulationOptions carParkOptions(DenseSensor dense_sensor, bool same_pose) {
   MapSimulationOptions options;
   options.seed = 3;

@@ -15,6 +15,11 @@ namespace testing_support {
 /// simulate (pda_simulate --seed N --kinect-frames 3 --velodyne-revolutions 1).
 simulation::MapSimulationOptions smallOfficeOptions(uint64_t seed);
 
+/// Two hand-held RGB-D fragments of the office (pda_simulate --seed N --sparse-sensor kinect
+/// [--distortion D]): the dense one warped by `distortion` (its ground truth then the warp's
+/// least-squares rigid fit over the overlap).
+simulation::MapSimulationOptions rgbdFragmentOptions(uint64_t seed, double distortion = 0.0);
+
 /// The car park scanned by lidars only (maps kept whole, as pda_simulate keeps lidar maps).
 simulation::MapSimulationOptions carParkOptions(simulation::DenseSensor dense_sensor,
                                                 bool same_pose);
