@@ -293,7 +293,7 @@ TEST(PdaCovarianceCheck, FactoryErrorIsWithinAThirdToThreeTimesSigma) {
                                                   " --cases factory_p64 --trials 5 --bounds 0.3:3");
   ASSERT_EQ(run.exit_code, 0) << run.err;
   const std::vector<std::string> cells = tableRow(run.out, "factory_p64");
-  ASSERT_EQ(cells.size(), 11u) << run.out;
+  ASSERT_EQ(cells.size(), 12u) << run.out;
   EXPECT_EQ(cells[2], "5/5");
   for (int column : {5, 8}) {  // translation and rotation |error| / sigma
     const double ratio = std::stod(cells[column]);
@@ -301,6 +301,15 @@ TEST(PdaCovarianceCheck, FactoryErrorIsWithinAThirdToThreeTimesSigma) {
     EXPECT_LE(ratio, 3.0) << run.out;
   }
   EXPECT_EQ(cells[9], "yes");
+  // How often a calibrated covariance would miss [0.3, 3] on this row: one error, one figure.
+  ASSERT_NE(cells[10].find(" %"), std::string::npos) << cells[10];
+  EXPECT_EQ(cells[10].find('/'), std::string::npos) << cells[10];
+  const double chance = std::stod(cells[10]);
+  EXPECT_GT(chance, 0.0);
+  EXPECT_LT(chance, 50.0);
+  EXPECT_NE(run.out.find("Rows outside [0.3, 3]: 0 of 1. A calibrated covariance would put "),
+            std::string::npos)
+      << run.out;
 }
 
 // Folders NAME_draw1, NAME_draw2 (noise draws of one scene) are one row NAME over all their
@@ -319,10 +328,16 @@ TEST(PdaCovarianceCheck, PoolDrawsMakesOneRowOfAllDraws) {
   ASSERT_EQ(run.exit_code, 0) << run.err;
   EXPECT_EQ(run.out.find("factory_draw"), std::string::npos) << run.out;
   const std::vector<std::string> cells = tableRow(run.out, "factory");
-  ASSERT_EQ(cells.size(), 11u) << run.out;
+  ASSERT_EQ(cells.size(), 12u) << run.out;
   EXPECT_EQ(cells[2], "4/4");
   // The pooled line counts the same trials.
   EXPECT_NE(run.out.find("Pooled over 4 converged trials"), std::string::npos) << run.out;
+  // Two draws: the odds of a miss as one error and as the median of two independent ones, which
+  // must both be out (less likely).
+  const size_t slash = cells[10].find(" / ");
+  ASSERT_NE(slash, std::string::npos) << cells[10];
+  EXPECT_LT(std::stod(cells[10].substr(slash + 3)), std::stod(cells[10])) << cells[10];
+  EXPECT_NE(run.out.find("if its draws erred independently"), std::string::npos) << run.out;
 }
 
 TEST(PdaCovarianceCheck, BadBoundsAreOneLineAndExitCodeTwo) {

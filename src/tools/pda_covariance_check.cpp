@@ -9,7 +9,14 @@
 // the error. --pool-draws pools folders NAME_draw1, NAME_draw2, ... (one simulated scene with
 // independent draws of its sensor noise: pda_simulate --noise-seed) into one row NAME, whose
 // median is then over independent errors.
+//
+// Even a calibrated covariance puts one error outside a range of |error| / sigma now and then, the
+// more often the more one direction holds its variance (calibration_odds.hpp). Each row says how
+// often ("outside by chance": if the row were one error, and, for pooled draws, if their errors
+// were independent; a scene's draws share most of theirs), and a line under the table how many
+// rows a calibrated covariance would put outside and how likely as many as found are.
 
+#include <Eigen/Eigenvalues>
 #include <algorithm>
 #include <cmath>
 #include <fstream>
@@ -20,6 +27,7 @@
 
 #include "pda_registration/core/perturbation.hpp"
 #include "pda_registration/core/pose_covariance.hpp"
+#include "pda_registration/tools/calibration_odds.hpp"
 #include "pda_registration/tools/case_folder.hpp"
 #include "pda_registration/tools/command_line.hpp"
 #include "pda_registration/tools/method_runner.hpp"
@@ -54,6 +62,10 @@ struct Trial {
   double translation_error = 0.0, translation_sigma = 0.0;  // [m]
   double rotation_error = 0.0, rotation_sigma = 0.0;        // [rad]
   double covariance_share = 0.0;  // the covariance's time / the alignment's
+  // The eigenvalues of the covariance's translation and rotation blocks, each over their sum:
+  // how the variance is shared between directions.
+  Eigen::Vector3d translation_shares = Eigen::Vector3d::Zero();
+  Eigen::Vector3d rotation_shares = Eigen::Vector3d::Zero();
 };
 
 int fail(const std::string& message) { return reportError("pda_covariance_check", message); }
@@ -65,6 +77,15 @@ double medianRatio(const std::vector<double>& errors, const std::vector<double>&
     if (sigmas[i] > 0.0) ratios.push_back(errors[i] / sigmas[i]);
   }
   return ratios.empty() ? std::nan("") : median(ratios);
+}
+
+// The eigenvalues of a 3x3 covariance block over their sum (zero for a zero block).
+Eigen::Vector3d varianceShares(const Eigen::Matrix3d& block) {
+  const Eigen::Vector3d values =
+      Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d>(block, Eigen::EigenvaluesOnly)
+          .eigenvalues()
+          .cwiseMax(0.0);
+  return values.sum() > 0.0 ? Eigen::Vector3d(values / values.sum()) : Eigen::Vector3d::Zero();
 }
 
 std::string ratioText(double ratio) {
@@ -144,6 +165,8 @@ int main(int argc, char** argv) {
         const ExpectedError expected = expectedError(r.covariance);
         trial.translation_sigma = expected.translation;
         trial.rotation_sigma = expected.rotation;
+        trial.translation_shares = varianceShares(r.covariance.topLeftCorner<3, 3>());
+        trial.rotation_shares = varianceShares(r.covariance.bottomRightCorner<3, 3>());
         all.push_back(trial);
         std::cerr << "\r" << name << " " << level.degrees << "deg/" << level.metres << "m trial "
                   << t + 1 << "/" << trials << "          " << std::flush;
@@ -166,13 +189,19 @@ int main(int argc, char** argv) {
 
   std::cout << "| case | level | converged | |t err| [cm] | sigma_t [cm] | t err / sigma_t | "
                "|r err| [deg] | sigma_r [deg] | r err / sigma_r | within ["
-            << low << ", " << high << "] | covariance time |\n"
-            << "|---|---|---|---|---|---|---|---|---|---|---|\n";
+            << low << ", " << high << "] | outside by chance | covariance time |\n"
+            << "|---|---|---|---|---|---|---|---|---|---|---|---|\n";
+  // Per row with a ratio, a calibrated covariance's odds of a miss: the row as one error, and as
+  // the median of its draws' independent errors.
+  std::vector<double> row_odds, row_odds_independent;
+  size_t rows_outside = 0;
   const double kDeg = 180.0 / M_PI;
   for (const std::string& name : rows) {
     for (const PerturbationLevel& level : levels) {
       std::vector<double> te, ts, re, rs, share;
+      Eigen::Vector3d t_shares = Eigen::Vector3d::Zero(), r_shares = Eigen::Vector3d::Zero();
       size_t tried = 0;
+      std::vector<std::string> draws;  // the case folders its converged trials come from
       for (const Trial& t : all) {
         if (t.row != name || t.level.degrees != level.degrees || t.level.metres != level.metres)
           continue;
@@ -183,17 +212,39 @@ int main(int argc, char** argv) {
         re.push_back(t.rotation_error);
         rs.push_back(t.rotation_sigma);
         share.push_back(t.covariance_share);
+        if (std::find(draws.begin(), draws.end(), t.case_name) == draws.end())
+          draws.push_back(t.case_name);
+        t_shares += t.translation_shares;
+        r_shares += t.rotation_shares;
       }
       const double t_ratio = medianRatio(te, ts), r_ratio = medianRatio(re, rs);
       // NaN (no sigma) is never within.
       auto within = [&](double ratio) { return ratio >= low && ratio <= high; };
+      // A calibrated covariance misses on either block of this row with these odds (the
+      // variance shared between directions as in its trials, averaged).
+      std::string chance = "-";
+      if (!std::isnan(t_ratio) && !std::isnan(r_ratio) && t_shares.sum() > 0.0 &&
+          r_shares.sum() > 0.0) {
+        const OutsideOdds t_odds = calibratedOutsideOdds(t_shares, low, high);
+        const OutsideOdds r_odds = calibratedOutsideOdds(r_shares, low, high);
+        const double odds = 1.0 - (1.0 - t_odds.either()) * (1.0 - r_odds.either());
+        const double independent =
+            1.0 - (1.0 - t_odds.medianOf(draws.size())) * (1.0 - r_odds.medianOf(draws.size()));
+        row_odds.push_back(odds);
+        row_odds_independent.push_back(independent);
+        if (!(within(t_ratio) && within(r_ratio))) ++rows_outside;
+        std::ostringstream text;
+        text << std::fixed << std::setprecision(0) << 100.0 * odds << " %";
+        if (draws.size() > 1) text << " / " << 100.0 * independent << " %";
+        chance = text.str();
+      }
       std::ostringstream row;
       row << std::fixed << "| " << name << " | " << std::setprecision(0) << level.degrees << "°/"
           << std::setprecision(2) << level.metres << " m | " << te.size() << "/" << tried << " | "
           << std::setprecision(3) << 100.0 * median(te) << " | " << 100.0 * median(ts) << " | "
           << ratioText(t_ratio) << " | " << std::setprecision(4) << kDeg * median(re) << " | "
           << kDeg * median(rs) << " | " << ratioText(r_ratio) << " | "
-          << (within(t_ratio) && within(r_ratio) ? "yes" : "**no**") << " | "
+          << (within(t_ratio) && within(r_ratio) ? "yes" : "**no**") << " | " << chance << " | "
           << std::setprecision(1) << 100.0 * median(share) << " % |\n";
       std::cout << row.str();
     }
@@ -216,6 +267,26 @@ int main(int argc, char** argv) {
               << "|error| / sigma " << ratioText(rms(t_ratios)) << " (translation), "
               << ratioText(rms(r_ratios)) << " (rotation); medians " << ratioText(median(t_ratios))
               << ", " << ratioText(median(r_ratios)) << ".\n";
+  }
+  // How many rows a calibrated covariance would miss on: a row outside the range is evidence
+  // against the covariance only where that is unlikely.
+  if (!row_odds.empty()) {
+    double expected = 0.0, expected_independent = 0.0;
+    for (size_t i = 0; i < row_odds.size(); ++i) {
+      expected += row_odds[i];
+      expected_independent += row_odds_independent[i];
+    }
+    std::cout << "\nRows outside [" << low << ", " << high << "]: " << rows_outside << " of "
+              << row_odds.size() << ". A calibrated covariance would put " << std::fixed
+              << std::setprecision(1) << expected << " outside on average if each row were one "
+              << "error (" << rows_outside << " or more with probability " << std::setprecision(2)
+              << chanceOfAtLeast(row_odds, rows_outside) << ")";
+    if (expected_independent != expected) {
+      std::cout << ", " << std::setprecision(1) << expected_independent
+                << " if its draws erred independently (" << std::setprecision(2)
+                << chanceOfAtLeast(row_odds_independent, rows_outside) << ")";
+    }
+    std::cout << ".\n";
   }
   return 0;
 }
