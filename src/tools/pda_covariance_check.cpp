@@ -276,15 +276,22 @@ int main(int argc, char** argv) {
       expected += row_odds[i];
       expected_independent += row_odds_independent[i];
     }
+    // The odds of as many misses as found, as one error per row and as independent draws.
+    const auto asMany = [&](const std::vector<double>& odds) {
+      std::ostringstream text;
+      if (rows_outside > 0) {
+        text << " (" << rows_outside << " or more with probability " << std::fixed
+             << std::setprecision(2) << chanceOfAtLeast(odds, rows_outside) << ")";
+      }
+      return text.str();
+    };
     std::cout << "\nRows outside [" << low << ", " << high << "]: " << rows_outside << " of "
               << row_odds.size() << ". A calibrated covariance would put " << std::fixed
               << std::setprecision(1) << expected << " outside on average if each row were one "
-              << "error (" << rows_outside << " or more with probability " << std::setprecision(2)
-              << chanceOfAtLeast(row_odds, rows_outside) << ")";
+              << "error" << asMany(row_odds);
     if (expected_independent != expected) {
       std::cout << ", " << std::setprecision(1) << expected_independent
-                << " if its draws erred independently (" << std::setprecision(2)
-                << chanceOfAtLeast(row_odds_independent, rows_outside) << ")";
+                << " if its draws erred independently" << asMany(row_odds_independent);
     }
     std::cout << ".\n";
   }
