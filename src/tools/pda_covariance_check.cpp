@@ -88,6 +88,59 @@ Eigen::Vector3d varianceShares(const Eigen::Matrix3d& block) {
   return values.sum() > 0.0 ? Eigen::Vector3d(values / values.sum()) : Eigen::Vector3d::Zero();
 }
 
+// How often a calibrated covariance would miss the rows: per row the odds as one error and as
+// the median of its draws' independent errors, and how many rows are out.
+struct MissOdds {
+  std::vector<double> as_one_error, as_independent_draws;
+  size_t rows_outside = 0;
+};
+
+// A row's odds of a miss on either block (the variance shared between directions as in its
+// trials: `t_shares`, `r_shares` summed over them), recorded in `odds`; the table's cell.
+std::string rowMissOdds(const Eigen::Vector3d& t_shares, const Eigen::Vector3d& r_shares,
+                        size_t draws, double low, double high, bool outside, MissOdds* odds) {
+  const OutsideOdds t = calibratedOutsideOdds(t_shares, low, high);
+  const OutsideOdds r = calibratedOutsideOdds(r_shares, low, high);
+  const double one = 1.0 - (1.0 - t.either()) * (1.0 - r.either());
+  const double independent = 1.0 - (1.0 - t.medianOf(draws)) * (1.0 - r.medianOf(draws));
+  odds->as_one_error.push_back(one);
+  odds->as_independent_draws.push_back(independent);
+  if (outside) ++odds->rows_outside;
+  std::ostringstream text;
+  text << std::fixed << std::setprecision(0) << 100.0 * one << " %";
+  if (draws > 1) text << " / " << 100.0 * independent << " %";
+  return text.str();
+}
+
+// The line under the table: rows out, and how many a calibrated covariance would put out on
+// average. A row outside the range is evidence against the covariance only where that is
+// unlikely.
+void printMissCount(const MissOdds& odds, double low, double high) {
+  if (odds.as_one_error.empty()) return;
+  double one = 0.0, independent = 0.0;
+  for (size_t i = 0; i < odds.as_one_error.size(); ++i) {
+    one += odds.as_one_error[i];
+    independent += odds.as_independent_draws[i];
+  }
+  const auto asMany = [&](const std::vector<double>& probabilities) {
+    std::ostringstream text;
+    if (odds.rows_outside > 0) {
+      text << " (" << odds.rows_outside << " or more with probability " << std::fixed
+           << std::setprecision(2) << chanceOfAtLeast(probabilities, odds.rows_outside) << ")";
+    }
+    return text.str();
+  };
+  std::cout << "\nRows outside [" << low << ", " << high << "]: " << odds.rows_outside << " of "
+            << odds.as_one_error.size() << ". A calibrated covariance would put " << std::fixed
+            << std::setprecision(1) << one << " outside on average if each row were one error"
+            << asMany(odds.as_one_error);
+  if (independent != one) {
+    std::cout << ", " << std::setprecision(1) << independent << " if its draws erred independently"
+              << asMany(odds.as_independent_draws);
+  }
+  std::cout << ".\n";
+}
+
 std::string ratioText(double ratio) {
   if (std::isnan(ratio)) return "-";
   std::ostringstream text;
@@ -191,10 +244,7 @@ int main(int argc, char** argv) {
                "|r err| [deg] | sigma_r [deg] | r err / sigma_r | within ["
             << low << ", " << high << "] | outside by chance | covariance time |\n"
             << "|---|---|---|---|---|---|---|---|---|---|---|---|\n";
-  // Per row with a ratio, a calibrated covariance's odds of a miss: the row as one error, and as
-  // the median of its draws' independent errors.
-  std::vector<double> row_odds, row_odds_independent;
-  size_t rows_outside = 0;
+  MissOdds miss_odds;
   const double kDeg = 180.0 / M_PI;
   for (const std::string& name : rows) {
     for (const PerturbationLevel& level : levels) {
@@ -220,23 +270,11 @@ int main(int argc, char** argv) {
       const double t_ratio = medianRatio(te, ts), r_ratio = medianRatio(re, rs);
       // NaN (no sigma) is never within.
       auto within = [&](double ratio) { return ratio >= low && ratio <= high; };
-      // A calibrated covariance misses on either block of this row with these odds (the
-      // variance shared between directions as in its trials, averaged).
       std::string chance = "-";
       if (!std::isnan(t_ratio) && !std::isnan(r_ratio) && t_shares.sum() > 0.0 &&
           r_shares.sum() > 0.0) {
-        const OutsideOdds t_odds = calibratedOutsideOdds(t_shares, low, high);
-        const OutsideOdds r_odds = calibratedOutsideOdds(r_shares, low, high);
-        const double odds = 1.0 - (1.0 - t_odds.either()) * (1.0 - r_odds.either());
-        const double independent =
-            1.0 - (1.0 - t_odds.medianOf(draws.size())) * (1.0 - r_odds.medianOf(draws.size()));
-        row_odds.push_back(odds);
-        row_odds_independent.push_back(independent);
-        if (!(within(t_ratio) && within(r_ratio))) ++rows_outside;
-        std::ostringstream text;
-        text << std::fixed << std::setprecision(0) << 100.0 * odds << " %";
-        if (draws.size() > 1) text << " / " << 100.0 * independent << " %";
-        chance = text.str();
+        chance = rowMissOdds(t_shares, r_shares, draws.size(), low, high,
+                             !(within(t_ratio) && within(r_ratio)), &miss_odds);
       }
       std::ostringstream row;
       row << std::fixed << "| " << name << " | " << std::setprecision(0) << level.degrees << "°/"
@@ -268,32 +306,6 @@ int main(int argc, char** argv) {
               << ratioText(rms(r_ratios)) << " (rotation); medians " << ratioText(median(t_ratios))
               << ", " << ratioText(median(r_ratios)) << ".\n";
   }
-  // How many rows a calibrated covariance would miss on: a row outside the range is evidence
-  // against the covariance only where that is unlikely.
-  if (!row_odds.empty()) {
-    double expected = 0.0, expected_independent = 0.0;
-    for (size_t i = 0; i < row_odds.size(); ++i) {
-      expected += row_odds[i];
-      expected_independent += row_odds_independent[i];
-    }
-    // The odds of as many misses as found, as one error per row and as independent draws.
-    const auto asMany = [&](const std::vector<double>& odds) {
-      std::ostringstream text;
-      if (rows_outside > 0) {
-        text << " (" << rows_outside << " or more with probability " << std::fixed
-             << std::setprecision(2) << chanceOfAtLeast(odds, rows_outside) << ")";
-      }
-      return text.str();
-    };
-    std::cout << "\nRows outside [" << low << ", " << high << "]: " << rows_outside << " of "
-              << row_odds.size() << ". A calibrated covariance would put " << std::fixed
-              << std::setprecision(1) << expected << " outside on average if each row were one "
-              << "error" << asMany(row_odds);
-    if (expected_independent != expected) {
-      std::cout << ", " << std::setprecision(1) << expected_independent
-                << " if its draws erred independently" << asMany(row_odds_independent);
-    }
-    std::cout << ".\n";
-  }
+  printMissCount(miss_odds, low, high);
   return 0;
 }
