@@ -14,16 +14,20 @@
 //    closer than about L, g_i the gradient of point i's term of the objective. Neighbouring
 //    residuals share the model's errors (sampling, surface fit, non-rigid distortion), so they
 //    are not independent constraints; S(L) grows with L as far as the scores stay correlated.
-//    L is not a constant: the term is the upper bound of S(L) over a doubling ladder of L, from
-//    the overlap's diagonal / 128 to its size, summed per grid cell (27 neighbouring cells).
+//    L is not a constant: the term is the level of a doubling ladder of L, from the overlap's
+//    diagonal / 128 to its size, that reaches furthest, summed per grid cell (27 neighbouring
+//    cells). Not the upper bound over the levels: each level estimates the same covariance with
+//    its own noise, and their bound adds that noise up direction by direction.
 //    H^-1 here is the model term's inverse information, as in an M-estimator's sandwich. What
 //    the map's parts disagree on as wholes (a warp over the whole map, a map that covers part of
 //    the scan) comes from a delete-one-octant jackknife, and the structure term is the upper
 //    bound of the two.
 //  - cuts: the overlap cut in two halves along each of its long axes (map_scale_spread.hpp). A
-//    cut whose halves disagree beyond the bound of the terms above (a chi-square test at 95 %)
-//    is taken into the bound: a warp or a bend of the whole map, which no neighbourhood of the
-//    correlogram reaches and an eighth left out barely moves.
+//    cut whose halves disagree beyond what every level allows (a chi-square test at 95 % against
+//    the model term bounded with all the levels and the jackknife) is taken into the bound: a
+//    warp or a bend of the whole map, which no neighbourhood of the correlogram reaches and an
+//    eighth left out barely moves. The test's null is the wide one so that the warp polish
+//    (warp_polish.hpp), which the test triggers, fires on a warp and not on the levels' scatter.
 // The structure term holds the white noise too, so the two are bounded, not summed. The bounds
 // are taken with rotations about the overlap's centre, so they do not depend on where the source
 // origin lies; the result is expressed about the source origin, as the message wants.

@@ -4,7 +4,7 @@
 // of the scene only one cloud saw), not against a warp, where the wide residuals are the same
 // surfaces bent and down-weighting them fits the part of the overlap that happens to fit best. The
 // covariance's cut test tells the two apart (pose_covariance.hpp): a warp makes the overlap's
-// halves disagree as wholes beyond the covariance; clutter and sensor noise do not (no cut fired
+// halves disagree as wholes beyond every term of it; clutter and sensor noise do not (no cut fired
 // on a right result of any rigid visible or held-out case; on two false rests it did, and the
 // polish turned both right: the office lattice directly, a scan pair by way of the wider search,
 // once the Gaussian sigma read "unresolved"). Where they disagree, the refine
