@@ -103,6 +103,60 @@ TEST(MapSimulation, NoiseSeedRedrawsOnlyTheSensorNoise) {
   EXPECT_TRUE(samePoints(a.sparse, c.sparse));
 }
 
+// The car park on another day: the places drawn again hold other cars (or none), everything else
+// is the scene itself; the dense map (the first day) is untouched and only the sparse scan sees
+// the change.
+TEST(CarParkAnotherDay, RedrawsOnlyTheParkingPlacesAndOnlyForTheSparseMap) {
+  const OutdoorScene outdoor = makeOutdoorScene(6);
+  ASSERT_GT(outdoor.slots.size(), 10u);
+  size_t changed = 1;
+  const Scene same = carParkAnotherDay(outdoor, 0.0, 1, &changed);
+  EXPECT_EQ(changed, 0u);
+  EXPECT_EQ(same.primitiveCount(), outdoor.scene.primitiveCount());
+
+  const Scene every = carParkAnotherDay(outdoor, 1.0, 1, &changed);
+  EXPECT_EQ(changed, outdoor.slots.size());
+  // Ground, buildings, poles and trees are the first day's, in the same order.
+  ASSERT_EQ(every.cylinders().size(), outdoor.scene.cylinders().size());
+  for (size_t b = 0; b < outdoor.first_car_box; ++b) {
+    EXPECT_EQ(every.boxes()[b].min, outdoor.scene.boxes()[b].min);
+    EXPECT_EQ(every.boxes()[b].max, outdoor.scene.boxes()[b].max);
+  }
+  // Every car now stands where no first-day car stood (each moved within its place, or is new).
+  size_t same_car = 0;
+  for (size_t b = outdoor.first_car_box; b < every.boxes().size(); ++b) {
+    for (size_t f = outdoor.first_car_box; f < outdoor.scene.boxes().size(); ++f) {
+      if (every.boxes()[b].min == outdoor.scene.boxes()[f].min) ++same_car;
+    }
+  }
+  EXPECT_EQ(same_car, 0u);
+
+  // A share draws about that share of the places, the same ones for the same seed.
+  size_t some = 0, again = 0;
+  carParkAnotherDay(outdoor, 0.3, 7, &some);
+  carParkAnotherDay(outdoor, 0.3, 7, &again);
+  EXPECT_EQ(some, again);
+  EXPECT_GT(some, 0u);
+  EXPECT_LT(some, outdoor.slots.size());
+
+  MapSimulationOptions options;
+  options.seed = 6;
+  options.scene = SceneKind::kOutdoor;
+  options.dense_voxel_size = 0.0;
+  options.velodyne_revolutions = 1;
+  options.dense_revolutions = 1;
+  const SimulatedMaps first_day = simulateMaps(options);
+  options.scene_change_share = 0.6;
+  const SimulatedMaps other_day = simulateMaps(options);
+  EXPECT_GT(other_day.changed_places, 0u);
+  EXPECT_EQ(first_day.changed_places, 0u);
+  EXPECT_TRUE(samePoints(first_day.dense, other_day.dense));
+  EXPECT_FALSE(samePoints(first_day.sparse, other_day.sparse));
+  EXPECT_TRUE(other_day.T_target_source.isApprox(first_day.T_target_source, 0.0));
+  options.scene = SceneKind::kOffice;
+  EXPECT_NE(validateSimulationOptions(options), "");
+}
+
 TEST(MapSimulation, SparseMapIsInItsOwnFrameAndDistortionOnlyWarpsTheDenseMap) {
   MapSimulationOptions options = smallOfficeOptions(13);
   options.kinect.noise = options.velodyne.noise = false;

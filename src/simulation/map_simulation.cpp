@@ -14,6 +14,7 @@ constexpr uint64_t kKinectStream = 1;
 constexpr uint64_t kVelodyneStream = 2;
 constexpr uint64_t kDenseLidarStream = 3;
 constexpr uint64_t kSparseKinectStream = 4;
+constexpr uint64_t kSceneChangeStream = 5;
 // The two fragments of a fragment pair: the first and the last 60 % of the walkway loop.
 constexpr double kFragmentLength = 0.6;
 constexpr double kOutdoorDenseLidarHeight = 1.9;   // [m] a mapping vehicle's roof
@@ -107,6 +108,10 @@ std::string validateSimulationOptions(const MapSimulationOptions& options) {
   if (options.scan_frame &&
       (options.velodyne_revolutions != 1 || options.sparse_sensor != SparseSensor::kVlp16))
     return "scan_frame needs a single VLP-16 revolution as the sparse map";
+  if (options.scene_change_share != 0.0 && options.scene != SceneKind::kOutdoor)
+    return "scene changes need the outdoor scene (its car park's places are what changes)";
+  if (!(options.scene_change_share >= 0.0 && options.scene_change_share <= 1.0))
+    return "scene_change_share must be within [0, 1]";
   if (options.dense_revolutions < 1) return "dense_revolutions must be >= 1";
   if (options.velodyne_revolutions < 1) return "velodyne_revolutions must be >= 1";
   return "";
@@ -184,8 +189,15 @@ SimulatedMaps simulateMaps(const MapSimulationOptions& options) {
   maps.dense_raw_points = dense.size();
   maps.dense = voxelDownsample(dense, options.dense_voxel_size);
 
-  // The lidar sees the scene (= undistorted dense frame); its map frame is where
+  // The lidar sees the scene (= undistorted dense frame) on its own day; its map frame is where
   // T_target_source_unwarped says.
+  const Scene sparse_scene =
+      options.scene_change_share > 0.0
+          ? carParkAnotherDay(outdoor, options.scene_change_share,
+                              streamSeed(options.seed, kSceneChangeStream, 0),
+                              &maps.changed_places)
+          : Scene();
+  const Scene& sparse_world = options.scene_change_share > 0.0 ? sparse_scene : maps.scene;
   const Eigen::Isometry3d T_source_target = maps.T_target_source_unwarped.inverse();
   PointList sparse_in_scene;
   if (fragments) {
@@ -198,7 +210,7 @@ SimulatedMaps simulateMaps(const MapSimulationOptions& options) {
   }
   for (size_t i = 0; i < lidar_poses.size(); ++i) {
     const PointList revolution =
-        simulateVelodyneRevolution(maps.scene, lidar_poses[i], sparse_lidar,
+        simulateVelodyneRevolution(sparse_world, lidar_poses[i], sparse_lidar,
                                    streamSeed(noiseSeed(options), kVelodyneStream, i));
     sparse_in_scene.insert(sparse_in_scene.end(), revolution.begin(), revolution.end());
     for (const Point& p : revolution) maps.sparse.push_back(T_source_target * p);

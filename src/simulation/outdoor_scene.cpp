@@ -26,6 +26,14 @@ class Random {
 
 bool onRoad(const Vector2d& p, double margin) { return std::abs(p.y()) < kRoadHalfWidth + margin; }
 
+constexpr double kFreeSlotShare = 0.35;  // of the car park's places, left free on a day
+
+// A car across its row at `x`, its side's distance from the road drawn from `random`.
+void parkCar(Scene* scene, double x, int side, Random* random) {
+  const double y = side * (kRoadHalfWidth + 3.0 + random->uniform(0.0, 0.4));
+  scene->addBox(Vector3d(x, y - 2.3, 0.0), Vector3d(x + 1.8, y + 2.3, random->uniform(1.4, 1.7)));
+}
+
 }  // namespace
 
 OutdoorScene makeOutdoorScene(uint64_t seed) {
@@ -46,11 +54,15 @@ OutdoorScene makeOutdoorScene(uint64_t seed) {
                  Vector3d(centre.x() + half.x(), centre.y() + half.y(), random.uniform(5.0, 14.0)));
   }
   // Parked cars in two rows beside the road (a car park), with gaps.
+  out.first_car_box = scene.boxes().size();
   for (int side = -1; side <= 1; side += 2) {
     for (double x = -30.0; x < 30.0; x += random.uniform(2.6, 7.0)) {
-      if (random.uniform(0.0, 1.0) < 0.35) continue;
-      const double y = side * (kRoadHalfWidth + 3.0 + random.uniform(0.0, 0.4));
-      scene.addBox(Vector3d(x, y - 2.3, 0.0), Vector3d(x + 1.8, y + 2.3, random.uniform(1.4, 1.7)));
+      ParkingSlot slot;
+      slot.x = x;
+      slot.side = side;
+      slot.occupied = random.uniform(0.0, 1.0) >= kFreeSlotShare;
+      out.slots.push_back(slot);
+      if (slot.occupied) parkCar(&scene, x, side, &random);
     }
   }
   // Lamp poles along the road and trees scattered in the open.
@@ -71,6 +83,35 @@ OutdoorScene makeOutdoorScene(uint64_t seed) {
     out.road_stops.emplace_back(-20.0 + 10.0 * stop + random.uniform(-1.0, 1.0), 0.0);
   }
   return out;
+}
+
+Scene carParkAnotherDay(const OutdoorScene& outdoor, double share, uint64_t seed,
+                        size_t* changed) {
+  if (changed) *changed = 0;
+  if (!(share > 0.0)) return outdoor.scene;
+  Random random(seed * 104729 + 71);
+  Scene day;
+  const std::vector<Box>& boxes = outdoor.scene.boxes();
+  for (size_t b = 0; b < outdoor.first_car_box && b < boxes.size(); ++b) {
+    day.addBox(boxes[b].min, boxes[b].max);
+  }
+  for (const VerticalCylinder& c : outdoor.scene.cylinders()) {
+    day.addCylinder(c.centre, c.radius, c.z_min, c.z_max);
+  }
+  size_t car = outdoor.first_car_box;
+  for (const ParkingSlot& slot : outdoor.slots) {
+    const Box* first_day = slot.occupied && car < boxes.size() ? &boxes[car++] : nullptr;
+    if (random.uniform(0.0, 1.0) >= share) {
+      if (first_day) day.addBox(first_day->min, first_day->max);
+      continue;
+    }
+    if (changed) ++*changed;
+    // Another car (or none), parked up to 0.4 m along the row from where the first day's stood.
+    if (random.uniform(0.0, 1.0) >= kFreeSlotShare) {
+      parkCar(&day, slot.x + random.uniform(-0.4, 0.4), slot.side, &random);
+    }
+  }
+  return day;
 }
 
 }  // namespace simulation

@@ -70,6 +70,9 @@ const char* kUsage =
     "                            the centre, with as much upward bend (0 = rigid; 0.01 = 5 cm).\n"
     "                            The ground truth is then the best rigid fit of the warp over\n"
     "                            the sparse points that have a dense point within 0.1 m\n"
+    "  --scene-changes F         outdoor scene: the sparse map is scanned on another day, with\n"
+    "                            a share F of the car park's places drawn again (cars gone,\n"
+    "                            come or parked differently); 0 = the same day (0)\n"
     "  --no-noise                exact sensors (no depth or range noise)\n"
     "  --seed-error-deg D        rotation error of the bag's tf seed (3)\n"
     "  --seed-error-m M          translation error of the bag's tf seed (0.15)\n"
@@ -93,7 +96,8 @@ int main(int argc, char** argv) {
                   "translation",    "distortion",
                   "seed-error-deg", "seed-error-m",
                   "dense-messages", "sparse-messages",
-                  "tf-rate",        "dense-offset"},
+                  "tf-rate",        "dense-offset",
+                  "scene-changes"},
                  {"no-noise", "same-pose", "scan-frame", "help"});
   if (!cl.parse(argc, argv)) return usageError(cl.error());
   if (cl.has("help")) {
@@ -120,6 +124,7 @@ int main(int argc, char** argv) {
                         cl.numberList("translation", &translation, -1e4, 1e4) &&
                         cl.numberList("dense-offset", &dense_offset, -1e3, 1e3) &&
                         cl.number("distortion", &options.distortion, 0.0, 0.2) &&
+                        cl.number("scene-changes", &options.scene_change_share, 0.0, 1.0) &&
                         cl.number("seed-error-deg", &seed_error_deg, 0.0, 180.0) &&
                         cl.number("seed-error-m", &seed_error_m, 0.0, 1e3) &&
                         cl.integer("dense-messages", &bag_options.dense_messages, 1, 100) &&
@@ -235,6 +240,10 @@ int main(int argc, char** argv) {
   json.add("velodyne_revolutions", options.velodyne_revolutions);
   json.add("sparse_points", maps.sparse.size()).add("distortion", options.distortion);
   json.add("noise", options.kinect.noise).add("simulation_ms", simulation_ms);
+  if (options.scene_change_share > 0.0) {
+    json.add("scene_changes", options.scene_change_share)
+        .add("changed_places", maps.changed_places);
+  }
   json.add("T_target_source", maps.T_target_source);
   json.add("T_target_source_unwarped", maps.T_target_source_unwarped);
   if (options.distortion != 0.0) {
