@@ -32,7 +32,7 @@ TEST(ApproachSubset, KeepsEveryRingOfAScanStoredFiringByFiring) {
   for (int column = 0; column < kColumns; ++column) {
     for (int ring = 0; ring < kRings; ++ring) scan.emplace_back(column, ring, 0.0);
   }
-  const PointList subset = applySourceBudget(scan, scan.size() / 4);
+  const PointList subset = randomSubsample(scan, scan.size() / 4);
   ASSERT_EQ(subset.size(), scan.size() / 4);
   std::vector<int> per_ring(kRings, 0);
   for (const Point& p : subset) ++per_ring[static_cast<int>(p.y())];

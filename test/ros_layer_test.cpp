@@ -314,8 +314,12 @@ TEST(LiveParameters, TheNodeletsDefaultsAreTheCoresAndTheTools) {
   EXPECT_EQ(nodelet.min_correspondences, core.min_correspondences);
   EXPECT_EQ(nodelet.min_support_fraction, core.min_support_fraction);
   EXPECT_EQ(nodelet.max_source_points, core.max_source_points);
+  EXPECT_EQ(nodelet.spread_source_budget, core.spread_source_budget);
   EXPECT_EQ(nodelet.threads, 2);
   EXPECT_EQ(core.threads, 1);
+  PdaRegistrationConfig spread = PdaRegistrationConfig::__getDefault__();
+  spread.spread_source_budget = true;
+  EXPECT_TRUE(liveParametersFrom(spread).registration.spread_source_budget);
 }
 
 }  // namespace

@@ -40,7 +40,7 @@ TEST(TargetSubset, BudgetedDenseSourceGetsTheTargetsVoxelMeans) {
   const RegistrationResult thinned = subset.align(kinect.source, seed);
   ASSERT_TRUE(thinned.converged) << thinned.reason;
   const double expected_voxel = sampleSpacing(
-      applySourceBudget(kinect.source, static_cast<size_t>(p.max_source_points)));
+      randomSubsample(kinect.source, static_cast<size_t>(p.max_source_points)));
   EXPECT_NEAR(thinned.target_subset_voxel, expected_voxel, 1e-12);
   EXPECT_GT(thinned.target_subset_voxel, 0.005);
   EXPECT_LT(thinned.target_subset_voxel, 0.03);

@@ -181,6 +181,7 @@ TEST(PdaAlign, UsageErrorsExitWithCodeTwoAndOneLine) {
       {clouds + " --method foo", "--method: 'foo'"},
       {clouds + " --method 'a\nb'", "--method: 'a\\nb'"},  // a newline, quoted by the shell
       {clouds + " --solver fast", "--solver: 'fast'"},
+      {clouds + " --spread-budget 2", "--spread-budget"},
       {clouds + " --solver closed_form", "closed_form needs surface_anisotropy = 1"},
       {clouds + " --initial " + bad_matrix, "expected 16 numbers"},
       {"--target /nonexistent.pcd --source " + data + "source.pcd", "cannot open"},

@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "pda_registration/core/voxel_cell.hpp"
+#include "pda_registration/core/voxel_slots.hpp"
 
 namespace pda_registration {
 
@@ -22,58 +23,6 @@ size_t countFinitePoints(const PointList& points) {
       std::count_if(points.begin(), points.end(), [](const Point& p) { return p.allFinite(); }));
 }
 
-namespace {
-
-// The voxel filter's table: open addressing with linear probing (key + 1; 0 = empty), grown at
-// half load. A pass over a map of millions of points is its hash lookups; std::unordered_map's
-// node per voxel and pointer chase cost more (2M Kinect points: 39-56 -> 28-32 ms, same output).
-class VoxelSlots {
- public:
-  VoxelSlots() : keys_(kInitialCapacity, 0), slots_(kInitialCapacity) {}
-
-  /// The slot of `key`, or `next` (recorded as the key's slot) when the key is new.
-  size_t find(uint64_t key, size_t next, bool* inserted) {
-    const uint64_t stored = key + 1;
-    size_t i = mix(stored) & mask();
-    while (keys_[i] != 0 && keys_[i] != stored) i = (i + 1) & mask();
-    *inserted = keys_[i] == 0;
-    if (!*inserted) return slots_[i];
-    keys_[i] = stored;
-    slots_[i] = next;
-    if (2 * ++used_ > keys_.size()) grow();
-    return next;
-  }
-
- private:
-  static constexpr size_t kInitialCapacity = 1024;
-  static uint64_t mix(uint64_t k) {  // a 64-bit finaliser (MurmurHash3's)
-    k ^= k >> 33;
-    k *= 0xff51afd7ed558ccdull;
-    k ^= k >> 33;
-    return k;
-  }
-  size_t mask() const { return keys_.size() - 1; }
-  void grow() {
-    std::vector<uint64_t> keys(2 * keys_.size(), 0);
-    std::vector<size_t> slots(keys.size());
-    const size_t mask = keys.size() - 1;
-    for (size_t j = 0; j < keys_.size(); ++j) {
-      if (keys_[j] == 0) continue;
-      size_t i = mix(keys_[j]) & mask;
-      while (keys[i] != 0) i = (i + 1) & mask;
-      keys[i] = keys_[j];
-      slots[i] = slots_[j];
-    }
-    keys_.swap(keys);
-    slots_.swap(slots);
-  }
-
-  std::vector<uint64_t> keys_;
-  std::vector<size_t> slots_;
-  size_t used_ = 0;
-};
-
-}  // namespace
 
 PointList voxelDownsample(const PointList& points, double voxel_size) {
   if (!(voxel_size > 0.0) || points.empty()) return points;

@@ -71,13 +71,15 @@ RegistrationResult PdaRegistration::alignUnchecked(const PointList& source_input
   // same subset as from a filtered copy, without copying a map of millions of points.
   bool budgeted_source = budget > 0 && !(p.source_voxel_size > 0.0) && finite_points > budget;
   if (budgeted_source) {
-    source = applySourceBudget(source_input, budget, finite_points);
+    source = p.spread_source_budget ? spatialSubsample(source_input, budget, finite_points)
+                                    : randomSubsample(source_input, budget, finite_points);
   } else {
     source = source_input;
     removeNonFinitePoints(&source);
     if (p.source_voxel_size > 0.0) source = voxelDownsample(source, p.source_voxel_size);
     if (budget > 0) {
-      PointList budgeted = applySourceBudget(source, budget);
+      PointList budgeted = p.spread_source_budget ? spatialSubsample(source, budget)
+                                                  : randomSubsample(source, budget);
       budgeted_source = !budgeted.empty();
       if (budgeted_source) source = std::move(budgeted);
     }
@@ -126,7 +128,7 @@ RegistrationResult PdaRegistration::alignUnchecked(const PointList& source_input
   coarse_source.clear();
   if (p.max_runs > 1 && p.coarse_stride > 1 &&
       source.size() / p.coarse_stride >= 20 * static_cast<size_t>(p.min_correspondences)) {
-    coarse_source = applySourceBudget(source, source.size() / p.coarse_stride);
+    coarse_source = randomSubsample(source, source.size() / p.coarse_stride);
   }
   enum class Stage { kApproach, kSettle, kRefine };
   Stage stage = p.max_runs == 1 ? Stage::kRefine

@@ -133,7 +133,8 @@ void AlignmentJob::run(const SparseJob& job, const LiveParameters& live) {
                         abandoned_in_a_row_ < kMaxAbandonedInARow;
   const double warm_time_limit_ms = deadline ? 1000.0 * live.deadline_periods * period_s : 0.0;
 
-  // Beyond max_source_points the core aligns an unbiased subsample (source_budget.hpp); a
+  // Beyond max_source_points the core aligns a subsample (source_budget.hpp: at random, or spread
+  // over space with spread_source_budget); a
   // swapped alignment still indexes the whole dense source as its target. Every result is judged
   // against the seed itself, wherever the alignment started.
   const Eigen::Isometry3d seed_target_source = targetSource(seed.T_dense_sparse);

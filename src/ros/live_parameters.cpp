@@ -31,6 +31,7 @@ LiveParameters liveParametersFrom(const PdaRegistrationConfig& c) {
   p.min_support_fraction = c.min_support_fraction;
   p.threads = c.threads;
   p.max_source_points = c.max_source_points;
+  p.spread_source_budget = c.spread_source_budget;
   // The keeper indexes the dense map's subset itself (dense_subset), so that a growing map's
   // index is extended rather than rebuilt; the core must not thin it again.
   p.target_subset = false;

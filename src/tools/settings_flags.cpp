@@ -24,6 +24,7 @@ std::set<std::string> settingsFlagNames() {
           "min-correspondences",
           "min-support",
           "max-source",
+          "spread-budget",
           "target-subset",
           "max-iterations",
           "ndt-resolution",
@@ -96,6 +97,10 @@ std::string settingsFlagsHelp() {
        << "  --max-source N          align a random subsample of at most N source points, as the\n"
        << "                          nodelet's max_source_points; 0 = all (" << p.max_source_points
        << ")\n"
+       << "  --spread-budget 0|1     1: the subsample of --max-source is spread over the space\n"
+       << "                          the source covers, its densest voxels thinned first (a\n"
+       << "                          lidar map whose near objects changed) ("
+       << (p.spread_source_budget ? 1 : 0) << ")\n"
        << "  --target-subset 0|1     a source thinned to --max-source is aligned to the target's\n"
        << "                          voxel means at its spacing, when the target is 2x finer;\n"
        << "                          0 = every target point (" << (p.target_subset ? 1 : 0) << ")\n"
@@ -129,6 +134,7 @@ bool readSettingsFlags(CommandLine* cl, MethodSettings* settings,
   };
   const auto given = [&](const char* flag) { return skip.count(flag) == 0 && cl->has(flag); };
   int target_subset = p.target_subset ? 1 : 0;
+  int spread_budget = p.spread_source_budget ? 1 : 0;
   if (!integer("k", &p.k, 1, 1000) || !number("radius", &p.radius, 1e-9, 1e9) ||
       !number("nu", &p.nu, 1e-6, inf) || !integer("runs", &p.max_runs, 1, 1000) ||
       !integer("em-iterations", &p.max_em_iterations, 1, 1000) ||
@@ -142,6 +148,7 @@ bool readSettingsFlags(CommandLine* cl, MethodSettings* settings,
       !number("min-support", &p.min_support_fraction, 0.0, 1.0) ||
       !integer("max-source", &p.max_source_points, 0, 1000000000) ||
       !integer("target-subset", &target_subset, 0, 1) ||
+      !integer("spread-budget", &spread_budget, 0, 1) ||
       !integer("max-iterations", &b.max_iterations, 1, 100000) ||
       !number("ndt-resolution", &b.ndt_resolution, 1e-6, 1e6) ||
       !number("ndt-step-size", &b.ndt_step_size, 1e-9, 1e6) ||
@@ -170,6 +177,7 @@ bool readSettingsFlags(CommandLine* cl, MethodSettings* settings,
                         " is not estimated or fixed");
   }
   p.target_subset = target_subset != 0;
+  p.spread_source_budget = spread_budget != 0;
   // The baselines share the inputs' limits: same radius, same voxel sizes.
   b.max_correspondence_distance = p.radius;
   b.source_voxel_size = p.source_voxel_size;

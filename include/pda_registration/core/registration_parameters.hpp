@@ -103,11 +103,15 @@ struct RegistrationParameters {
   int threads =
       1;  ///< worker threads for candidate search and E-step (results do not depend on it)
   // --- Per-alignment source budget -----------------------------------------------------------
-  /// A source of more points (after source_voxel_size) is aligned as an unbiased random
-  /// subsample of this many (core/source_budget.hpp), so alignment time stays bounded as a
-  /// sparse map grows or when the source is itself a dense map; 0 = none. The dense source of a
-  /// swapped alignment (alignment_direction.hpp) is still the whole cloud as the target.
+  /// A source of more points (after source_voxel_size) is aligned as this many of them
+  /// (core/source_budget.hpp), so alignment time stays bounded as a sparse map grows or when the
+  /// source is itself a dense map; 0 = none. The dense source of a swapped alignment
+  /// (alignment_direction.hpp) is still the whole cloud as the target.
   int max_source_points = 15000;
+  /// How the budget thins: false, an unbiased random subsample; true, spread over the space the
+  /// source covers, its densest voxels first (a lidar map whose near objects changed between the
+  /// maps; it costs dense RGB-D maps and sparse scan pairs a few millimetres).
+  bool spread_source_budget = false;
 };
 
 /// Empty string when the parameters are usable, otherwise a one-line explanation.
