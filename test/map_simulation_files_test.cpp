@@ -207,7 +207,6 @@ TEST(PdaSimulateTool, BadFlagsExitWithCodeTwoAndOneLine) {
                                                   "--output " + folder + " --translation 1,2",
                                                   "--output " + folder + " --kinect-frames 0",
                                                   "--output " + folder + " --distortion lots",
-                                                  "--output " + folder + " --scene-changes 0.3",
                                                   "--output " + folder + " --scene outdoor --scene-changes 2",
                                                   "--output " + folder + " --colour red",
                                                   "--output /dev/null/case",

@@ -153,8 +153,42 @@ TEST(CarParkAnotherDay, RedrawsOnlyTheParkingPlacesAndOnlyForTheSparseMap) {
   EXPECT_TRUE(samePoints(first_day.dense, other_day.dense));
   EXPECT_FALSE(samePoints(first_day.sparse, other_day.sparse));
   EXPECT_TRUE(other_day.T_target_source.isApprox(first_day.T_target_source, 0.0));
-  options.scene = SceneKind::kOffice;
+  options.scene_change_share = 1.5;
   EXPECT_NE(validateSimulationOptions(options), "");
+}
+
+// The office on another day: its chairs drawn again (gone, or moved along the desk and pushed in
+// or pulled out), nothing else; only the sparse map sees them.
+TEST(OfficeAnotherDay, RedrawsOnlyTheChairsAndOnlyForTheSparseMap) {
+  const OfficeScene office = makeOfficeScene(3);
+  ASSERT_GT(office.chairs.size(), 4u);
+  size_t with_chair = 0;
+  for (const ChairPlace& place : office.chairs) with_chair += place.seat_box >= 0 ? 1 : 0;
+  ASSERT_GT(with_chair, 0u);
+  size_t changed = 1;
+  EXPECT_EQ(officeAnotherDay(office, 0.0, 1, &changed).primitiveCount(),
+            office.scene.primitiveCount());
+  EXPECT_EQ(changed, 0u);
+  const Scene every = officeAnotherDay(office, 1.0, 1, &changed);
+  EXPECT_EQ(changed, office.chairs.size());
+  // Everything but the chairs is there as it was: as many primitives less the first day's chairs
+  // (3 each) plus the new ones (3 each).
+  const size_t others = office.scene.primitiveCount() - 3 * with_chair;
+  EXPECT_EQ((every.primitiveCount() - others) % 3, 0u);
+  for (const ChairPlace& place : office.chairs) {
+    if (place.seat_box < 0) continue;
+    const Box& seat = office.scene.boxes()[place.seat_box];
+    for (const Box& box : every.boxes()) EXPECT_FALSE(box.min == seat.min && box.max == seat.max);
+  }
+
+  MapSimulationOptions options = smallOfficeOptions(3);
+  const SimulatedMaps first_day = simulateMaps(options);
+  options.scene_change_share = 1.0;
+  const SimulatedMaps other_day = simulateMaps(options);
+  EXPECT_EQ(other_day.changed_places, office.chairs.size());
+  EXPECT_TRUE(samePoints(first_day.dense, other_day.dense));
+  EXPECT_FALSE(samePoints(first_day.sparse, other_day.sparse));
+  EXPECT_EQ(validateSimulationOptions(options), "");
 }
 
 TEST(MapSimulation, SparseMapIsInItsOwnFrameAndDistortionOnlyWarpsTheDenseMap) {

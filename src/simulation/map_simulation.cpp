@@ -80,12 +80,12 @@ std::vector<Eigen::Isometry3d> denseLidarPoses(const SimulatedMaps& maps,
   return poses;
 }
 
-// The frames of a hand-held Kinect scan at `poses`, accumulated (scene frame).
-PointList kinectScan(const SimulatedMaps& maps, const std::vector<Eigen::Isometry3d>& poses,
+// The frames of a hand-held Kinect scan of `scene` at `poses`, accumulated (scene frame).
+PointList kinectScan(const Scene& scene, const std::vector<Eigen::Isometry3d>& poses,
                      const MapSimulationOptions& options, uint64_t stream) {
   PointList scan;
   for (size_t i = 0; i < poses.size(); ++i) {
-    const PointList frame = simulateKinectFrame(maps.scene, poses[i], options.kinect,
+    const PointList frame = simulateKinectFrame(scene, poses[i], options.kinect,
                                                 streamSeed(noiseSeed(options), stream, i));
     scan.insert(scan.end(), frame.begin(), frame.end());
   }
@@ -108,8 +108,6 @@ std::string validateSimulationOptions(const MapSimulationOptions& options) {
   if (options.scan_frame &&
       (options.velodyne_revolutions != 1 || options.sparse_sensor != SparseSensor::kVlp16))
     return "scan_frame needs a single VLP-16 revolution as the sparse map";
-  if (options.scene_change_share != 0.0 && options.scene != SceneKind::kOutdoor)
-    return "scene changes need the outdoor scene (its car park's places are what changes)";
   if (!(options.scene_change_share >= 0.0 && options.scene_change_share <= 1.0))
     return "scene_change_share must be within [0, 1]";
   if (options.dense_revolutions < 1) return "dense_revolutions must be >= 1";
@@ -163,7 +161,7 @@ SimulatedMaps simulateMaps(const MapSimulationOptions& options) {
     maps.kinect_poses =
         fragments ? kinectTrajectory(maps.office, options.kinect_frames, 0.0, kFragmentLength)
                   : kinectTrajectory(maps.office, options.kinect_frames);
-    dense = kinectScan(maps, maps.kinect_poses, options, kKinectStream);
+    dense = kinectScan(maps.scene, maps.kinect_poses, options, kKinectStream);
   } else {
     if (options.same_pose) {
       maps.dense_lidar_poses.assign(options.dense_revolutions, lidar_poses.front());
@@ -191,12 +189,16 @@ SimulatedMaps simulateMaps(const MapSimulationOptions& options) {
 
   // The lidar sees the scene (= undistorted dense frame) on its own day; its map frame is where
   // T_target_source_unwarped says.
-  const Scene sparse_scene =
-      options.scene_change_share > 0.0
-          ? carParkAnotherDay(outdoor, options.scene_change_share,
-                              streamSeed(options.seed, kSceneChangeStream, 0),
-                              &maps.changed_places)
-          : Scene();
+  // What changed for it: the car park's parked cars, the office's chairs.
+  const uint64_t change_seed = streamSeed(options.seed, kSceneChangeStream, 0);
+  Scene sparse_scene;
+  if (options.scene_change_share > 0.0) {
+    sparse_scene = options.scene == SceneKind::kOutdoor
+                       ? carParkAnotherDay(outdoor, options.scene_change_share, change_seed,
+                                           &maps.changed_places)
+                       : officeAnotherDay(maps.office, options.scene_change_share, change_seed,
+                                          &maps.changed_places);
+  }
   const Scene& sparse_world = options.scene_change_share > 0.0 ? sparse_scene : maps.scene;
   const Eigen::Isometry3d T_source_target = maps.T_target_source_unwarped.inverse();
   PointList sparse_in_scene;
@@ -204,8 +206,8 @@ SimulatedMaps simulateMaps(const MapSimulationOptions& options) {
     lidar_poses.clear();
     const std::vector<Eigen::Isometry3d> poses =
         kinectTrajectory(maps.office, options.kinect_frames, 1.0 - kFragmentLength, 1.0);
-    sparse_in_scene = voxelDownsample(kinectScan(maps, poses, options, kSparseKinectStream),
-                                      options.dense_voxel_size);
+    sparse_in_scene = voxelDownsample(
+        kinectScan(sparse_world, poses, options, kSparseKinectStream), options.dense_voxel_size);
     for (const Point& p : sparse_in_scene) maps.sparse.push_back(T_source_target * p);
   }
   for (size_t i = 0; i < lidar_poses.size(); ++i) {

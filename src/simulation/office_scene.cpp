@@ -141,9 +141,28 @@ void addCorridorFurniture(Scene* scene, Random* random, const WallRun& run) {
   }
 }
 
+constexpr double kChairChance = 0.8;  // of a desk having its chair
+
+// A chair at `cx` along the island, its seat `reach` metres from the desk's edge on `side` of the
+// island's centre line `centre_y`: seat and back boxes, then the post. Returns its place.
+ChairPlace addChair(Scene* scene, double middle, double centre_y, double side, double cx,
+                    double reach) {
+  const auto y = [centre_y, side](double depth) { return centre_y + side * depth; };
+  ChairPlace place{middle, centre_y, side};
+  place.seat_box = static_cast<int>(scene->boxes().size());
+  scene->addBox(Vector3d(cx - 0.25, y(reach), 0.42), Vector3d(cx + 0.25, y(reach + 0.5), 0.48));
+  place.back_box = static_cast<int>(scene->boxes().size());
+  scene->addBox(Vector3d(cx - 0.23, y(reach + 0.45), 0.48),
+                Vector3d(cx + 0.23, y(reach + 0.5), 0.95));
+  place.post_cylinder = static_cast<int>(scene->cylinders().size());
+  scene->addCylinder(Vector2d(cx, y(reach + 0.25)), 0.04, 0.0, 0.42);
+  return place;
+}
+
 // Two back-to-back rows of desks with monitors, chairs and bins, a privacy screen between the
 // rows, and a pillar at each end of the island.
-void addDeskIsland(Scene* scene, Random* random, const Eigen::AlignedBox2d& island, double height) {
+void addDeskIsland(Scene* scene, Random* random, const Eigen::AlignedBox2d& island, double height,
+                   std::vector<ChairPlace>* chairs) {
   const double centre_y = island.center().y();
   const double pillar_radius = random->uniform(0.2, 0.3);
   scene->addCylinder(Vector2d(island.min().x() + 0.35, centre_y), pillar_radius, 0.0, height);
@@ -175,14 +194,12 @@ void addDeskIsland(Scene* scene, Random* random, const Eigen::AlignedBox2d& isla
         scene->addBox(Vector3d(middle + offset - 0.27, y(0.15), 0.78),
                       Vector3d(middle + offset + 0.27, y(0.2), 1.12));
       }
-      if (random->chance(0.8)) {
+      if (random->chance(kChairChance)) {
         const double cx = middle + random->uniform(-0.15, 0.15);
         const double reach = random->uniform(0.7, 0.85);  // how far the chair is pushed in
-        scene->addBox(Vector3d(cx - 0.25, y(reach), 0.42),
-                      Vector3d(cx + 0.25, y(reach + 0.5), 0.48));
-        scene->addBox(Vector3d(cx - 0.23, y(reach + 0.45), 0.48),
-                      Vector3d(cx + 0.23, y(reach + 0.5), 0.95));
-        scene->addCylinder(Vector2d(cx, y(reach + 0.25)), 0.04, 0.0, 0.42);
+        chairs->push_back(addChair(scene, middle, centre_y, side, cx, reach));
+      } else {
+        chairs->push_back(ChairPlace{middle, centre_y, side});
       }
       if (random->chance(0.4)) {
         scene->addCylinder(Vector2d(x + desk_width - 0.25, y(0.45)), 0.15, 0.0, 0.35);
@@ -245,7 +262,7 @@ OfficeScene makeOfficeScene(uint64_t seed) {
   const double island_inset = office.walkway_inset + office.walkway_clearance + 0.2;
   const Eigen::AlignedBox2d island(Vector2d(island_inset, island_inset),
                                    Vector2d(length - island_inset, width - island_inset));
-  addDeskIsland(scene, &random, island, height);
+  addDeskIsland(scene, &random, island, height, &office.chairs);
 
   addCorridorFurniture(scene, &random,
                        {Vector2d(0.0, corridor_y + corridor_width), Vector2d(1.0, 0.0),
@@ -253,6 +270,46 @@ OfficeScene makeOfficeScene(uint64_t seed) {
   addCeilingLights(scene, office.office, height);
   addCeilingLights(scene, office.corridor, height);
   return office;
+}
+
+Scene officeAnotherDay(const OfficeScene& office, double share, uint64_t seed, size_t* changed) {
+  if (changed) *changed = 0;
+  if (!(share > 0.0)) return office.scene;
+  std::vector<char> chair_box(office.scene.boxes().size(), 0);
+  std::vector<char> chair_post(office.scene.cylinders().size(), 0);
+  for (const ChairPlace& place : office.chairs) {
+    if (place.seat_box < 0) continue;
+    chair_box[place.seat_box] = chair_box[place.back_box] = 1;
+    chair_post[place.post_cylinder] = 1;
+  }
+  Scene day;
+  for (size_t b = 0; b < office.scene.boxes().size(); ++b) {
+    if (!chair_box[b]) day.addBox(office.scene.boxes()[b].min, office.scene.boxes()[b].max);
+  }
+  for (size_t c = 0; c < office.scene.cylinders().size(); ++c) {
+    const VerticalCylinder& post = office.scene.cylinders()[c];
+    if (!chair_post[c]) day.addCylinder(post.centre, post.radius, post.z_min, post.z_max);
+  }
+  Random random(seed * 104723 + 29);
+  for (const ChairPlace& place : office.chairs) {
+    if (random.uniform(0.0, 1.0) >= share) {
+      if (place.seat_box >= 0) {  // the first day's chair, where it stood
+        const Box& seat = office.scene.boxes()[place.seat_box];
+        const Box& back = office.scene.boxes()[place.back_box];
+        const VerticalCylinder& post = office.scene.cylinders()[place.post_cylinder];
+        day.addBox(seat.min, seat.max);
+        day.addBox(back.min, back.max);
+        day.addCylinder(post.centre, post.radius, post.z_min, post.z_max);
+      }
+      continue;
+    }
+    if (changed) ++*changed;
+    if (random.chance(kChairChance)) {
+      addChair(&day, place.middle, place.centre_y, place.side,
+               place.middle + random.uniform(-0.4, 0.4), random.uniform(0.6, 1.3));
+    }
+  }
+  return day;
 }
 
 }  // namespace simulation

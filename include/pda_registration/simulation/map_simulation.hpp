@@ -75,8 +75,9 @@ struct MapSimulationOptions {
   int velodyne_revolutions = 3;    ///< lidar stops around the loop, one revolution each
   double dense_voxel_size = 0.03;  ///< [m] voxel grid of the accumulated dense map; 0 keeps all
   double distortion = 0.0;         ///< DriftDistortion::amount applied to the dense map
-  /// Outdoor scenes only: the sparse map is scanned on another day, with this share of the car
-  /// park's places drawn again (carParkAnotherDay): cars gone, come or moved between the maps.
+  /// The sparse map is scanned on another day, with this share of the car park's parking places
+  /// (carParkAnotherDay: cars gone, come or moved) or of the office's chairs (officeAnotherDay)
+  /// drawn again; the dense map is the first day's.
   double scene_change_share = 0.0;
   // T_target_source_unwarped (the ground truth without distortion): rotation Rz(yaw) Ry(pitch)
   // Rx(roll), then the translation.
@@ -103,7 +104,7 @@ struct SimulatedMaps {
   std::vector<Eigen::Isometry3d> dense_lidar_poses;  ///< T_dense_lidar (lidar dense sensors)
   std::vector<Eigen::Isometry3d> velodyne_poses;     ///< T_sparse_lidar
   size_t dense_raw_points = 0;  ///< accumulated depth points before the voxel grid
-  size_t changed_places = 0;    ///< parking places drawn again for the sparse map's day
+  size_t changed_places = 0;    ///< parking places or chairs drawn again for the sparse map's day
 };
 
 /// Empty when the options can be simulated, otherwise why not (e.g. a Kinect outdoors).
