@@ -9,6 +9,7 @@
 #include <limits>
 
 #include "pda_registration/core/pda_registration.hpp"
+#include "pda_registration/core/pose_covariance.hpp"
 #include "pda_registration/core/scan_line_scale.hpp"
 #include "pda_registration/core/surface_normals.hpp"
 #include "pda_registration/simulation/map_simulation.hpp"
@@ -75,6 +76,29 @@ TEST(OutdoorScene, ACarParkOnAnotherDayIsAlignedOnWhatStayedWithTheSpreadBudget)
     const double error = alignedError(maps, spread, 5.0, 0.25, seed, &result);
     EXPECT_TRUE(result.converged) << result.reason;
     EXPECT_LT(error, 0.01) << "perturbation seed " << seed;
+  }
+}
+
+// The office on another day (pda_simulate --seed 4 --scene-changes 1.0): every one of its ten
+// chairs gone or moved for the sparse map's day, the dense map the first day's. Indoors the walls,
+// desks and shelves outnumber the chairs, and the default budget holds: 4.2-4.5 mm from 5 deg
+// (1.9 mm unchanged; GICP 2.0-2.1 cm), and the covariance widens with it, if less (error / sigma
+// 1.8 translation, 1.6 rotation, pda_covariance_check). The hard bound on sigma: never 3x smaller than the error.
+TEST(OfficeScene, AnOfficeWhoseChairsMovedIsAlignedWithTheDefaults) {
+  MapSimulationOptions options;
+  options.seed = 4;
+  options.scene_change_share = 1.0;
+  const SimulatedMaps maps = simulateMaps(options);
+  ASSERT_GE(maps.changed_places, 8u);
+  for (const uint64_t seed : {1u, 2u}) {
+    RegistrationResult result;
+    const double error = alignedError(maps, RegistrationParameters(), 5.0, 0.25, seed, &result);
+    EXPECT_TRUE(result.converged) << result.reason;
+    EXPECT_LT(error, 0.01) << "perturbation seed " << seed;
+    const double t_error =
+        (result.T_target_source.translation() - maps.T_target_source.translation()).norm();
+    EXPECT_LT(t_error, 3.0 * expectedError(result.covariance).translation)
+        << "perturbation seed " << seed;
   }
 }
 
