@@ -83,7 +83,8 @@ TEST(OutdoorScene, ACarParkOnAnotherDayIsAlignedOnWhatStayedWithTheSpreadBudget)
 // chairs gone or moved for the sparse map's day, the dense map the first day's. Indoors the walls,
 // desks and shelves outnumber the chairs, and the default budget holds: 4.2-4.5 mm from 5 deg
 // (1.9 mm unchanged; GICP 2.0-2.1 cm), and the covariance widens with it, if less (error / sigma
-// 1.8 translation, 1.6 rotation, pda_covariance_check). The hard bound on sigma: never 3x smaller than the error.
+// 1.8 translation, 1.6 rotation, pda_covariance_check). Asserted: the hard bound, sigma
+// never 3x smaller than the error.
 TEST(OfficeScene, AnOfficeWhoseChairsMovedIsAlignedWithTheDefaults) {
   MapSimulationOptions options;
   options.seed = 4;
