@@ -57,3 +57,8 @@ target_link_libraries(warp_polish_test pda_simulated_cases gtest_main)
 catkin_add_gtest(normal_lookup_test normal_lookup_test.cpp)
 target_compile_options(normal_lookup_test PRIVATE ${PDA_WARNINGS})
 target_link_libraries(normal_lookup_test pda_simulated_cases gtest_main)
+
+# A second pose along the least certain direction: walls, and the car park on another day.
+catkin_add_gtest(competing_shift_test competing_shift_test.cpp)
+target_compile_options(competing_shift_test PRIVATE ${PDA_WARNINGS})
+target_link_libraries(competing_shift_test pda_simulated_cases gtest_main)

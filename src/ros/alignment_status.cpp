@@ -54,6 +54,9 @@ void AlignmentStatus::fill(diagnostic_updater::DiagnosticStatusWrapper& status,
   // What ~pose's covariance expects (1 sigma): how far off the estimate probably is.
   status.add("expected error [cm]", 100.0 * s.expected_error.translation);
   status.add("expected error [deg]", s.expected_error.rotation * 180.0 / M_PI);
+  // A second pose that fits as many of the points fixing the least certain direction, this far
+  // from the estimate (0: none; core/competing_shift.hpp); the expected error includes it.
+  status.add("competing pose [cm]", 100.0 * r.competing_shift);
   status.add("inlier fraction", r.inlier_fraction);
   status.add("support fraction", r.support_fraction);  // inliers among the overlapping points
   // The normal map's finest voxel: normal_voxel_size, or the map's scan-line scale if larger.

@@ -135,6 +135,8 @@ int main(int argc, char** argv) {
     const ExpectedError expected = expectedError(r.covariance);
     json.add("expected_error_m", expected.translation)
         .add("expected_error_deg", expected.rotation * 180.0 / M_PI);
+    json.add("competing_shift_m", r.competing_shift).add("competing_share", r.competing_share);
+    json.add("covariance_ms", r.covariance_ms);
   } else {
     json.addRaw("runs", "null").addRaw("sigma", "null").addRaw("nu", "null").addRaw("inlier_fraction", "null");
     json.add("fitness", outcome.fitness);

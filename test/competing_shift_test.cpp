@@ -1,0 +1,121 @@
+// A second pose along the estimate's least certain direction (competing_shift.hpp): found where a
+// repeat of the scene fits as well, not found where there is none, and taken into the covariance
+// end to end on the car park on another day, whose estimate rests on the wrong one of two peaks.
+#include "pda_registration/core/competing_shift.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "pda_registration/core/pose_covariance.hpp"
+#include "pda_registration/simulation/map_simulation.hpp"
+#include "test_support/simulated_cases.hpp"
+
+namespace pda_registration {
+namespace {
+
+// A wall x = x0 sampled every `spacing` over 4 m x 2 m.
+void addWall(double x0, double spacing, PointList* points) {
+  for (double y = -2.0; y <= 2.0; y += spacing) {
+    for (double z = 0.0; z <= 2.0; z += spacing) points->push_back(Point(x0, y, z));
+  }
+}
+
+struct WallCase {
+  PointList source, normals;
+  PointList target;
+};
+
+// The source sees one wall; the target holds it and, if `repeat` > 0, a parallel wall that far
+// behind it (a row of parked cars, the next desk of a walkway).
+WallCase wallCase(double repeat) {
+  WallCase c;
+  addWall(0.0, 0.1, &c.source);
+  c.normals.assign(c.source.size(), Point(1.0, 0.0, 0.0));
+  addWall(0.0, 0.05, &c.target);
+  if (repeat > 0.0) addWall(repeat, 0.05, &c.target);
+  return c;
+}
+
+CompetingShiftSettings wallSettings() {
+  CompetingShiftSettings s;
+  s.inlier_distance = 0.03;
+  s.search_radius = 0.25;
+  s.reach = 1.0;
+  return s;
+}
+
+// The covariance's least certain direction: x (across the walls).
+Eigen::Matrix3d weakAlongX() {
+  Eigen::Matrix3d covariance = Eigen::Matrix3d::Identity() * 1e-6;
+  covariance(0, 0) = 1e-4;
+  return covariance;
+}
+
+TEST(CompetingShift, FindsAParallelWallThatFitsAsWellAndTakesItIntoTheCovariance) {
+  const WallCase c = wallCase(0.4);
+  TargetIndex index(c.target);
+  const CompetingShift found = findCompetingShift(
+      c.source, c.normals, Eigen::Isometry3d::Identity(), index, weakAlongX(), wallSettings());
+  ASSERT_TRUE(found.found());
+  EXPECT_NEAR(found.shift.x(), 0.4, 0.035);  // within a step (reach / 32)
+  EXPECT_NEAR(found.shift.y(), 0.0, 1e-9);
+  EXPECT_NEAR(found.share, 0.5, 0.05);  // every probed point fits either wall
+  EXPECT_GE(found.probe_points, 32u);
+
+  Eigen::Matrix<double, 6, 6> covariance = Eigen::Matrix<double, 6, 6>::Identity() * 1e-6;
+  const Eigen::Matrix<double, 6, 6> widened = withCompetingShift(covariance, found);
+  EXPECT_NEAR(widened(0, 0), 1e-6 + found.share * found.shift.squaredNorm(), 1e-12);
+  EXPECT_EQ((widened - covariance).bottomRightCorner(3, 3).norm(), 0.0);  // rotations untouched
+}
+
+TEST(CompetingShift, NoneWhereTheSceneHasNoRepeatOrTheDirectionIsNotTheWeakOne) {
+  const WallCase single = wallCase(0.0);
+  TargetIndex single_index(single.target);
+  EXPECT_FALSE(findCompetingShift(single.source, single.normals, Eigen::Isometry3d::Identity(),
+                                  single_index, weakAlongX(), wallSettings())
+                   .found());
+  // With the repeat, but y the least certain direction: no point's surface faces it.
+  const WallCase repeated = wallCase(0.4);
+  TargetIndex repeated_index(repeated.target);
+  Eigen::Matrix3d weak_along_y = Eigen::Matrix3d::Identity() * 1e-6;
+  weak_along_y(1, 1) = 1e-4;
+  const CompetingShift along_y =
+      findCompetingShift(repeated.source, repeated.normals, Eigen::Isometry3d::Identity(),
+                         repeated_index, weak_along_y, wallSettings());
+  EXPECT_FALSE(along_y.found());
+  EXPECT_EQ(along_y.probe_points, 0u);
+  // Beyond the reach the registration searched, a repeat is not a competitor.
+  const WallCase far = wallCase(1.5);
+  TargetIndex far_index(far.target);
+  EXPECT_FALSE(findCompetingShift(far.source, far.normals, Eigen::Isometry3d::Identity(),
+                                  far_index, weakAlongX(), wallSettings())
+                   .found());
+}
+
+// The car park on another day (pda_simulate --seed 6 --scene outdoor --scene-changes 0.6; see
+// lattice_registration_test's ACarParkOnAnotherDay... for the spread budget that aligns it): with
+// the defaults the estimate rests 28.8 cm along the road, on the re-parked cars' peak, and the
+// curvature there said 2.1 cm (13.8x too confident). The probe finds the truth's peak and the
+// covariance holds it: the bound, sigma never 3x smaller than the error.
+TEST(CompetingShift, ACarParkOnAnotherDayReportsTheOtherPeakItMightBeOn) {
+  simulation::MapSimulationOptions options =
+      testing_support::carParkOptions(simulation::DenseSensor::kLidar64, false);
+  options.seed = 6;
+  options.scene_change_share = 0.6;
+  const simulation::SimulatedMaps maps = simulation::simulateMaps(options);
+  for (const uint64_t seed : {1u, 2u}) {
+    RegistrationResult result;
+    testing_support::alignedError(maps, RegistrationParameters(), 5.0, 0.25, seed, &result);
+    const Eigen::Vector3d t_error =
+        result.T_target_source.translation() - maps.T_target_source.translation();
+    ASSERT_GT(t_error.norm(), 0.1) << "the slide this test is about is gone: perturbation seed "
+                                   << seed << " lands " << t_error.norm() << " m off";
+    EXPECT_LT(t_error.norm(), 3.0 * expectedError(result.covariance).translation)
+        << "perturbation seed " << seed;
+    EXPECT_NEAR(result.competing_shift, t_error.norm(), 0.05) << "perturbation seed " << seed;
+  }
+}
+
+}  // namespace
+}  // namespace pda_registration
