@@ -22,8 +22,9 @@ constexpr double kMinFacing = 0.5;
 constexpr size_t kMinProbePoints = 32;
 
 // The most prominent peak beyond the estimate's on one side (`side` runs outward from the
-// estimate, `own` the estimate's peak count): at each shift, its rise above the deepest dip
-// between it and the estimate (the saddle), and the estimate's own rise above that same dip.
+// estimate, `own` the estimate's peak count), which ends at the first count below half of it: at
+// each shift beyond, its rise above the deepest dip between it and the estimate (the saddle),
+// and the estimate's own rise above that same dip.
 // Prominence, not height: a cluttered room fits 40-50 % of the estimate's count at many shifts,
 // by points that land near some surface by chance, and the dip between two peaks measures that
 // background where they are.
@@ -36,8 +37,12 @@ struct SidePeak {
 SidePeak mostProminentBeyond(const std::vector<size_t>& side, size_t own) {
   SidePeak best;
   size_t saddle = side[0];
+  bool left_own_peak = false;
   for (size_t k = 1; k < side.size(); ++k) {
     saddle = std::min(saddle, side[k]);
+    // Within the estimate's own peak a shallow dip and its rise are the count's noise.
+    left_own_peak = left_own_peak || 2 * side[k] < own;
+    if (!left_own_peak) continue;
     const SidePeak here{static_cast<double>(side[k] - saddle),
                         static_cast<double>(own) - static_cast<double>(saddle), k};
     if (here.relative() > best.relative()) best = here;
