@@ -11,11 +11,14 @@
 #include <cmath>
 #include <cstring>
 #include <limits>
+#include <map>
+#include <string>
 #include <thread>
 #include <vector>
 
 #include "pda_registration/core/pose_covariance.hpp"
 #include "pda_registration/core/pose_jacobian.hpp"
+#include "pda_registration/ros/alignment_status.hpp"
 #include "pda_registration/ros/association_markers.hpp"
 #include "pda_registration/ros/idle_cores.hpp"
 #include "pda_registration/ros/initial_transform.hpp"
@@ -320,6 +323,25 @@ TEST(LiveParameters, TheNodeletsDefaultsAreTheCoresAndTheTools) {
   PdaRegistrationConfig spread = PdaRegistrationConfig::__getDefault__();
   spread.spread_source_budget = true;
   EXPECT_TRUE(liveParametersFrom(spread).registration.spread_source_budget);
+}
+
+// The diagnostics say how far a competing pose lies (core/competing_shift.hpp), in cm, beside the
+// expected error that includes it.
+TEST(AlignmentStatus, DiagnosticsShowTheCompetingPose) {
+  AlignmentStatus status;
+  status.update([](AlignmentStatusValues& s) {
+    s.have_result = true;
+    s.last_result.converged = true;
+    s.last_result.competing_shift = 0.25;
+    s.expected_error.translation = 0.155;
+  });
+  diagnostic_updater::DiagnosticStatusWrapper wrapper;
+  status.fill(wrapper, 1);
+  std::map<std::string, std::string> values;
+  for (const diagnostic_msgs::KeyValue& kv : wrapper.values) values[kv.key] = kv.value;
+  ASSERT_EQ(values.count("competing pose [cm]"), 1u);
+  EXPECT_NEAR(std::stod(values["competing pose [cm]"]), 25.0, 1e-9);
+  EXPECT_NEAR(std::stod(values["expected error [cm]"]), 15.5, 1e-9);
 }
 
 }  // namespace
