@@ -24,10 +24,7 @@ constexpr size_t kMinProbePoints = 32;
 // The most prominent peak beyond the estimate's on one side (`side` runs outward from the
 // estimate, `own` the estimate's peak count), which ends at the first count below half of it: at
 // each shift beyond, its rise above the deepest dip between it and the estimate (the saddle),
-// and the estimate's own rise above that same dip.
-// Prominence, not height: a cluttered room fits 40-50 % of the estimate's count at many shifts,
-// by points that land near some surface by chance, and the dip between two peaks measures that
-// background where they are.
+// and the estimate's own rise above that same dip (prominence, not height: see the header).
 struct SidePeak {
   double rise = 0.0;      ///< above the saddle
   double own_rise = 0.0;  ///< the estimate's, above the same saddle

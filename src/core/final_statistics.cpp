@@ -89,19 +89,13 @@ void fillFinalStatistics(const PointList& source, const TargetIndex& index,
                                  p.threads, &workspace->e_step, &workspace->correspondences);
   workspace->e_step.second_moments = false;
   const WeightedCorrespondences& correspondences = workspace->correspondences;
-  using Clock = std::chrono::steady_clock;
-  const auto covariance_start = Clock::now();
+  const auto covariance_start = std::chrono::steady_clock::now();
   PoseCovarianceTerms terms;
   computePoseCovariance(correspondences, state.T, state.sigma_squared, state.nu, &result->covariance,
                         &terms);
   result->covariance_correlation_length = terms.cell_edge;
   result->disagreeing_halves = terms.disagreeing_cuts;
-  const auto covariance_end = Clock::now();
-  fillInlierStatistics(source, candidates, state.T, p.inlier_sigmas * result->sigma,
-                       countOverlap(index, source, candidates, state.T, p.radius, p.threads),
-                       result);
   // A second peak along the least certain direction, which the curvature at this one cannot see.
-  const auto probe_start = Clock::now();
   CompetingShiftSettings probe;
   probe.inlier_distance = p.inlier_sigmas * result->sigma;
   probe.search_radius = refineRadius(p, state.sigma_squared);
@@ -112,9 +106,11 @@ void fillFinalStatistics(const PointList& source, const TargetIndex& index,
   result->competing_shift = competitor.shift.norm();
   result->competing_share = competitor.share;
   result->covariance_ms =
-      std::chrono::duration<double, std::milli>(covariance_end - covariance_start + Clock::now() -
-                                                probe_start)
+      std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - covariance_start)
           .count();
+  fillInlierStatistics(source, candidates, state.T, p.inlier_sigmas * result->sigma,
+                       countOverlap(index, source, candidates, state.T, p.radius, p.threads),
+                       result);
   PointList moved(source.size());
   for (size_t j = 0; j < source.size(); ++j) moved[j] = state.T * source[j];
   result->degeneracy_ratio = constraintEigenvalueRatio(moved, normals);

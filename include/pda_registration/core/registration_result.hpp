@@ -21,8 +21,8 @@ struct RegistrationResult {
   /// Cuts of the overlap whose halves disagreed beyond the covariance (pose_covariance.hpp, 0-3):
   /// a map warped or bent as a whole.
   size_t disagreeing_halves = 0;
-  /// [length] how far along the least certain direction a second pose fits as many of the points
-  /// that fix that direction (competing_shift.hpp; 0: none): the covariance holds it
+  /// [length] how far along the least certain direction a second pose fits the points that fix
+  /// that direction nearly as well (competing_shift.hpp; 0: none): the covariance holds it
   double competing_shift = 0.0;
   double competing_share = 0.0;  ///< that pose's share of the two poses' support (0: none)
 
