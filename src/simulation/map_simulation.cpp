@@ -15,8 +15,6 @@ constexpr uint64_t kVelodyneStream = 2;
 constexpr uint64_t kDenseLidarStream = 3;
 constexpr uint64_t kSparseKinectStream = 4;
 constexpr uint64_t kSceneChangeStream = 5;
-// The two fragments of a fragment pair: the first and the last 60 % of the walkway loop.
-constexpr double kFragmentLength = 0.6;
 constexpr double kOutdoorDenseLidarHeight = 1.9;   // [m] a mapping vehicle's roof
 constexpr double kOutdoorSparseLidarHeight = 1.7;  // [m] a car's roof
 
@@ -158,9 +156,9 @@ SimulatedMaps simulateMaps(const MapSimulationOptions& options) {
   const bool fragments = options.sparse_sensor == SparseSensor::kKinectFragment;
   PointList dense;
   if (options.dense_sensor == DenseSensor::kKinect) {
-    maps.kinect_poses =
-        fragments ? kinectTrajectory(maps.office, options.kinect_frames, 0.0, kFragmentLength)
-                  : kinectTrajectory(maps.office, options.kinect_frames);
+    maps.kinect_poses = fragments ? kinectTrajectory(maps.office, options.kinect_frames, 0.0,
+                                                     options.fragment_length)
+                                  : kinectTrajectory(maps.office, options.kinect_frames);
     dense = kinectScan(maps.scene, maps.kinect_poses, options, kKinectStream);
   } else {
     if (options.same_pose) {
@@ -205,9 +203,9 @@ SimulatedMaps simulateMaps(const MapSimulationOptions& options) {
   if (fragments) {
     lidar_poses.clear();
     const std::vector<Eigen::Isometry3d> poses =
-        kinectTrajectory(maps.office, options.kinect_frames, 1.0 - kFragmentLength, 1.0);
-    sparse_in_scene = voxelDownsample(
-        kinectScan(sparse_world, poses, options, kSparseKinectStream), options.dense_voxel_size);
+        kinectTrajectory(maps.office, options.kinect_frames, 1.0 - options.fragment_length, 1.0);
+    sparse_in_scene = voxelDownsample(kinectScan(sparse_world, poses, options, kSparseKinectStream),
+                                      options.dense_voxel_size);
     for (const Point& p : sparse_in_scene) maps.sparse.push_back(T_source_target * p);
   }
   for (size_t i = 0; i < lidar_poses.size(); ++i) {

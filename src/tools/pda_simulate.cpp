@@ -57,6 +57,9 @@ const char* kUsage =
     "                            frame, as a real scan: the ground truth is the sensor's pose\n"
     "                            (--yaw-deg, --translation etc. are then not used)\n"
     "  --kinect-frames N         depth frames around the walkway (24)\n"
+    "  --fragment-length L       with --sparse-sensor kinect: the share of the walkway loop\n"
+    "                            each fragment scans, the dense map the first, the source\n"
+    "                            the last (0.6); shorter ones share less of the scene\n"
     "  --velodyne-revolutions N  lidar stops around the walkway, one revolution each (3)\n"
     "  --dense-voxel M           voxel grid of the dense map in metres, 0 keeps every point "
     "(0.03\n"
@@ -87,17 +90,29 @@ int usageError(const std::string& message) { return reportError("pda_simulate", 
 }  // namespace
 
 int main(int argc, char** argv) {
-  CommandLine cl({"output",         "bag",
-                  "seed",           "noise-seed",
-                  "scene",          "dense-sensor",
-                  "sparse-sensor",  "dense-revolutions",
-                  "kinect-frames",  "velodyne-revolutions",
-                  "dense-voxel",    "yaw-deg",
-                  "pitch-deg",      "roll-deg",
-                  "translation",    "distortion",
-                  "seed-error-deg", "seed-error-m",
-                  "dense-messages", "sparse-messages",
-                  "tf-rate",        "dense-offset",
+  CommandLine cl({"output",
+                  "bag",
+                  "seed",
+                  "noise-seed",
+                  "scene",
+                  "dense-sensor",
+                  "sparse-sensor",
+                  "dense-revolutions",
+                  "kinect-frames",
+                  "fragment-length",
+                  "velodyne-revolutions",
+                  "dense-voxel",
+                  "yaw-deg",
+                  "pitch-deg",
+                  "roll-deg",
+                  "translation",
+                  "distortion",
+                  "seed-error-deg",
+                  "seed-error-m",
+                  "dense-messages",
+                  "sparse-messages",
+                  "tf-rate",
+                  "dense-offset",
                   "scene-changes"},
                  {"no-noise", "same-pose", "scan-frame", "help"});
   if (!cl.parse(argc, argv)) return usageError(cl.error());
@@ -117,6 +132,7 @@ int main(int argc, char** argv) {
   const bool flags_ok = cl.integer("seed", &seed, 0, 2147483647) &&
                         cl.integer("noise-seed", &noise_seed, 1, 2147483647) &&
                         cl.integer("kinect-frames", &options.kinect_frames, 1, 1000) &&
+                        cl.number("fragment-length", &options.fragment_length, 0.2, 1.0) &&
                         cl.integer("velodyne-revolutions", &options.velodyne_revolutions, 1, 100) &&
                         cl.number("dense-voxel", &options.dense_voxel_size, 0.0, 1.0) &&
                         cl.number("yaw-deg", &options.yaw_deg, -360.0, 360.0) &&
