@@ -57,6 +57,17 @@ wait_until() {
   done
 }
 
+# bounded SECONDS WHAT COMMAND...: runs COMMAND under a time limit; when it fails or runs past
+# SECONDS, says which step and exits the script. For the measurement scripts' long tool runs.
+bounded() {
+  local seconds="$1" what="$2"
+  shift 2
+  timeout "${seconds}" "$@" || {
+    echo "[$(basename "$0")] ${what}: failed or ran past ${seconds} s" >&2
+    exit 1
+  }
+}
+
 # stop_process PID [SECONDS]: SIGINT (roslaunch shuts its nodes down cleanly on it), then SIGKILL
 # if PID is still there after SECONDS (default 15); never waits longer.
 stop_process() {
