@@ -90,31 +90,22 @@ int usageError(const std::string& message) { return reportError("pda_simulate", 
 }  // namespace
 
 int main(int argc, char** argv) {
-  CommandLine cl({"output",
-                  "bag",
-                  "seed",
-                  "noise-seed",
-                  "scene",
-                  "dense-sensor",
-                  "sparse-sensor",
-                  "dense-revolutions",
-                  "kinect-frames",
-                  "fragment-length",
+  // clang-format off
+  CommandLine cl({"output",          "bag",
+                  "seed",            "noise-seed",
+                  "scene",           "dense-sensor",
+                  "sparse-sensor",   "dense-revolutions",
+                  "kinect-frames",   "fragment-length",
                   "velodyne-revolutions",
-                  "dense-voxel",
-                  "yaw-deg",
-                  "pitch-deg",
-                  "roll-deg",
-                  "translation",
-                  "distortion",
-                  "seed-error-deg",
-                  "seed-error-m",
-                  "dense-messages",
-                  "sparse-messages",
-                  "tf-rate",
-                  "dense-offset",
+                  "dense-voxel",     "yaw-deg",
+                  "pitch-deg",       "roll-deg",
+                  "translation",     "distortion",
+                  "seed-error-deg",  "seed-error-m",
+                  "dense-messages",  "sparse-messages",
+                  "tf-rate",         "dense-offset",
                   "scene-changes"},
                  {"no-noise", "same-pose", "scan-frame", "help"});
+  // clang-format on
   if (!cl.parse(argc, argv)) return usageError(cl.error());
   if (cl.has("help")) {
     std::cout << kUsage;

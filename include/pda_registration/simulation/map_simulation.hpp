@@ -71,12 +71,12 @@ struct MapSimulationOptions {
   /// T_target_source is then the sensor's pose in the dense map (yaw/pitch/roll/translation are
   /// not used), so a perturbation turns the scan about its sensor, as a seed's error would.
   bool scan_frame = false;
-  int kinect_frames = 24;  ///< depth frames around the walkway loop (per fragment)
   /// RGB-D fragment pairs: the share of the walkway loop each fragment scans (the dense map the
   /// first, the source the last). Below 0.5 a stretch of the loop lies between them and they
   /// share only what both see across the room (0.4: about 30 % of the source's points within
   /// 5 cm of the map, against 54 % at 0.6).
   double fragment_length = 0.6;
+  int kinect_frames = 24;          ///< depth frames around the walkway loop (per fragment)
   int velodyne_revolutions = 3;    ///< lidar stops around the loop, one revolution each
   double dense_voxel_size = 0.03;  ///< [m] voxel grid of the accumulated dense map; 0 keeps all
   double distortion = 0.0;         ///< DriftDistortion::amount applied to the dense map
