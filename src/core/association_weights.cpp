@@ -40,6 +40,8 @@ void weighSourcePoints(const PointList& source, const CandidateSets& candidates,
   std::vector<double>& log_u_minus_u = buffers->log_u_minus_u;
   const bool second_moments = buffers->second_moments;
   std::vector<Eigen::Matrix3d>& moments = buffers->moments;
+  std::vector<double>& inlier = buffers->inlier;
+  const OutlierClass outliers = buffers->outliers;
 
 #pragma omp parallel num_threads(std::max(threads, 1))
   {
@@ -93,6 +95,25 @@ void weighSourcePoints(const PointList& source, const CandidateSets& candidates,
         if constexpr (kNuStatistic) precision_term += posterior[i] * log_u[i] - rho[i];
       }
       if (!(w > 0.0)) continue;
+      // The outlier class's share of this point (1 without it) scales every sum it adds.
+      double gamma = 1.0;
+      if (outliers.on()) {
+        const double best = *std::min_element(residuals, residuals + count);
+        const double inverse_sigma_squared = weighting.inverseSigmaSquared();
+        // Across the surface the variance is sigma^2; without a normal the whole (isotropic) one.
+        const double across_inverse =
+            has_normal ? inverse_sigma_squared : inverse_sigma_squared * inverse_kappa;
+        gamma = inlierResponsibility(outliers, weighting.nu(), best * inverse_sigma_squared,
+                                     -std::log(across_inverse),
+                                     1.0 / (inverse_total * static_cast<double>(count)));
+        w *= gamma;
+        offset *= gamma;
+        sum_across *= gamma;
+        sum_across_squared *= gamma;
+        sum_squared *= gamma;
+        precision_term *= gamma;
+      }
+      inlier[j] = gamma;
       // The spread about the weighted mean, sum rho_i |y_i - mean|^2 split across and along the
       // surface, from the sums about x (the residuals are at most the radius: no cancellation
       // worth the second pass over the candidates it saves).
@@ -109,7 +130,7 @@ void weighSourcePoints(const PointList& source, const CandidateSets& candidates,
           const Point r = y[i] - x;
           moment.noalias() += (rho[i] * rho[i] / posterior[i]) * r * r.transpose();
         }
-        moments[j] = moment;
+        moments[j] = gamma * moment;
       }
       means[j] = mean;
       weights[j] = w;
@@ -137,6 +158,7 @@ void computeWeightedCorrespondences(const PointList& source, const CandidateSets
   buffers->across.resize(n);
   buffers->along.resize(n);
   buffers->log_u_minus_u.resize(n);
+  buffers->inlier.resize(n);
   const bool nu_statistic = buffers->nu_statistic && !std::isinf(nu);
   const CandidateWeighting weighting(nu, sigma_squared, nu_statistic);
   const bool second_moments = buffers->second_moments;
@@ -178,6 +200,8 @@ void computeWeightedCorrespondences(const PointList& source, const CandidateSets
   out.spread_across.resize(count);
   out.spread_along.resize(count);
   out.second_moment.resize(second_moments ? count : 0);
+  out.inlier_total = 0.0;
+  out.inlier_total_with_normal = 0.0;
   double precision_sum = 0.0;
   for (size_t j = 0, c = 0; j < n; ++j) {
     if (!(slots.weights[j] > 0.0)) continue;
@@ -191,9 +215,11 @@ void computeWeightedCorrespondences(const PointList& source, const CandidateSets
     out.spread_across[c] = slots.across[j];
     out.spread_along[c] = slots.along[j];
     if (second_moments) out.second_moment[c] = slots.moments[j];
+    out.inlier_total += slots.inlier[j];
+    if (out.normal[c].squaredNorm() > 0.0) out.inlier_total_with_normal += slots.inlier[j];
     ++c;
   }
-  out.mean_log_u_minus_u = count == 0 ? 0.0 : precision_sum / static_cast<double>(count);
+  out.mean_log_u_minus_u = count == 0 ? 0.0 : precision_sum / out.inlier_total;
 }
 
 Associations computeAssociations(const PointList& source, const CandidateSets& candidates,
@@ -252,11 +278,13 @@ double estimateSigmaSquared(const WeightedCorrespondences& c,
       across_sum += c.weight[i] * across + c.spread_across[i];
       ++with_normal;
     }
-    if (with_normal >= std::max(kMinimumSurfacePoints, c.size() / 10)) {
-      return across_sum / static_cast<double>(with_normal);
+    if (with_normal >= std::max(kMinimumSurfacePoints, c.size() / 10) &&
+        c.inlier_total_with_normal > 0.0) {
+      return across_sum / c.inlier_total_with_normal;
     }
   }
-  return weightedObjective(c, T_target_source) / (kDimension * static_cast<double>(c.size()));
+  if (!(c.inlier_total > 0.0)) return 0.0;
+  return weightedObjective(c, T_target_source) / (kDimension * c.inlier_total);
 }
 
 double initialSigmaSquared(const PointList& source, const CandidateSets& candidates,

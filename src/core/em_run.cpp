@@ -10,6 +10,7 @@
 #include "pda_registration/core/degrees_of_freedom.hpp"
 #include "pda_registration/core/gauss_newton_solver.hpp"
 #include "pda_registration/core/noise_shapes.hpp"
+#include "pda_registration/core/outlier_class.hpp"
 #include "pda_registration/core/run_extrapolation.hpp"
 
 namespace pda_registration {
@@ -110,11 +111,19 @@ bool runEm(const PointList& source, const SurfaceNormalMap& normal_map, NormalLo
   std::optional<RunExtrapolation> extrapolation;
   if (step_metric) extrapolation.emplace(*step_metric);
   for (int iteration = 0; iteration < p.max_em_iterations; ++iteration) {
+    workspace->e_step.outliers =
+        state->outlier_class
+            ? outlierClassFor(state->outlier_share, state->search_radius, state->nu)
+            : OutlierClass();
     makeNoiseShapes(normals, workspace->spread, state->sigma_squared, p, &workspace->shapes);
     computeWeightedCorrespondences(source, candidates, workspace->shapes, state->T, state->nu,
                                    state->sigma_squared, p.threads, &workspace->e_step,
                                    &workspace->correspondences);
     const WeightedCorrespondences& correspondences = workspace->correspondences;
+    if (state->outlier_class && correspondences.size() > 0) {
+      state->outlier_share =
+          1.0 - correspondences.inlier_total / static_cast<double>(correspondences.size());
+    }
     Eigen::Isometry3d T_next = state->T;
     if (!runMStep(correspondences, p, &T_next)) return false;
     if (estimate_sigma) {

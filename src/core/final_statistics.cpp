@@ -9,6 +9,7 @@
 #include "pda_registration/core/competing_shift.hpp"
 #include "pda_registration/core/degeneracy.hpp"
 #include "pda_registration/core/noise_shapes.hpp"
+#include "pda_registration/core/outlier_class.hpp"
 #include "pda_registration/core/pose_covariance.hpp"
 
 namespace pda_registration {
@@ -85,14 +86,18 @@ void fillFinalStatistics(const PointList& source, const TargetIndex& index,
                   &workspace->shapes);
   const NoiseShapes& shapes = workspace->shapes;
   workspace->e_step.second_moments = true;  // for the covariance's observed information
+  // The statistics' candidates are searched within the full radius.
+  workspace->e_step.outliers = state.outlier_class
+                                   ? outlierClassFor(state.outlier_share, p.radius, state.nu)
+                                   : OutlierClass();
   computeWeightedCorrespondences(source, candidates, shapes, state.T, state.nu, state.sigma_squared,
                                  p.threads, &workspace->e_step, &workspace->correspondences);
   workspace->e_step.second_moments = false;
   const WeightedCorrespondences& correspondences = workspace->correspondences;
   const auto covariance_start = std::chrono::steady_clock::now();
   PoseCovarianceTerms terms;
-  computePoseCovariance(correspondences, state.T, state.sigma_squared, state.nu, &result->covariance,
-                        &terms);
+  computePoseCovariance(correspondences, state.T, state.sigma_squared, state.nu,
+                        &result->covariance, &terms);
   result->covariance_correlation_length = terms.cell_edge;
   result->disagreeing_halves = terms.disagreeing_cuts;
   // A second peak along the least certain direction, which the curvature at this one cannot see.

@@ -1,8 +1,8 @@
 #include "pda_registration/core/pda_registration.hpp"
 
 // The engine's entry points: the target, the parameters, and align(), which runs the staged
-// alignment (staged_alignment.cpp) and, where its result calls for one, a second start, the
-// other direction or a wider search.
+// alignment (staged_alignment.cpp) and, where its result calls for one, a second start, a local
+// start, the other direction or a wider search.
 
 #include <chrono>
 #include <cmath>
@@ -12,6 +12,7 @@
 #include <utility>
 
 #include "pda_registration/core/alignment_direction.hpp"
+#include "pda_registration/core/local_start.hpp"
 #include "pda_registration/core/pose_covariance.hpp"
 #include "pda_registration/core/representative_subset.hpp"
 #include "pda_registration/core/second_start.hpp"
@@ -43,6 +44,19 @@ class NestedAlignment {
   RegistrationParameters* live_;
   const RegistrationParameters user_;
   bool time_left_ = true;
+};
+
+// True for as long as it lives, whatever ends its scope (align() catches what alignUnchecked
+// throws).
+class ScopedFlag {
+ public:
+  explicit ScopedFlag(bool* flag) : flag_(flag) { *flag_ = true; }
+  ScopedFlag(const ScopedFlag&) = delete;
+  ScopedFlag& operator=(const ScopedFlag&) = delete;
+  ~ScopedFlag() { *flag_ = false; }
+
+ private:
+  bool* flag_;
 };
 
 // A failed result whose nested alignment (the other direction, a wider search) was cut by the
@@ -132,6 +146,7 @@ RegistrationResult PdaRegistration::align(const PointList& source,
   try {
     result = alignUnchecked(source, T_target_source_initial, associations);
     trySecondStart(source, T_target_source_initial, start, &result, associations);
+    tryLocalStart(source, T_target_source_initial, start, &result, associations);
     tryOtherDirection(source, T_target_source_initial, start, &result, associations);
     tryWiderSearch(source, T_target_source_initial, start, &result, associations);
   } catch (const std::exception& error) {
@@ -181,6 +196,28 @@ void PdaRegistration::trySecondStart(const PointList& source, const Eigen::Isome
     adoptNested(better, &second, &second_associations, result, associations);
     if (better) return;
   }
+}
+
+void PdaRegistration::tryLocalStart(const PointList& source, const Eigen::Isometry3d& T_initial,
+                                    std::chrono::steady_clock::time_point started,
+                                    RegistrationResult* result, Associations* associations) {
+  if (!localStartWarranted(*result, parameters_)) return;
+  const double time_limit_ms = parameters_.time_limit_ms;
+  const NestedAlignment nested(&parameters_, started);
+  if (!nested.timeLeft()) {
+    noteCutByTheTimeLimit("a local start", time_limit_ms, result);
+    return;
+  }
+  Associations local_associations;
+  RegistrationResult local;
+  {
+    const ScopedFlag with_outlier_class(&outlier_class_);
+    local = alignUnchecked(source, T_initial, associations ? &local_associations : nullptr);
+  }
+  const bool holds = localStartHolds(local, workspace_.source, T_initial, parameters_);
+  const bool cut = local.out_of_time;
+  adoptNested(holds, &local, &local_associations, result, associations);
+  if (!holds && cut) noteCutByTheTimeLimit("a local start", time_limit_ms, result);
 }
 
 void PdaRegistration::tryOtherDirection(const PointList& source, const Eigen::Isometry3d& T_initial,

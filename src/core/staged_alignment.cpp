@@ -137,6 +137,7 @@ RegistrationResult PdaRegistration::alignUnchecked(const PointList& source_input
   EmState state;
   state.T = T;
   state.nu = p.nu;
+  state.outlier_class = outlier_class_;
   if (p.sigma_mode == SigmaMode::kFixed) state.sigma_squared = p.fixed_sigma * p.fixed_sigma;
   CandidateSets& candidates = workspace_.candidates;
   Increment last_run_step{0.0, 0.0};
@@ -165,6 +166,7 @@ RegistrationResult PdaRegistration::alignUnchecked(const PointList& source_input
         stage == Stage::kRefine && p.max_runs > 1 ? refineRadius(p, state.sigma_squared) : p.radius;
     findCandidateSets(*index, active, state.T, p.k, radius, p.threads, &workspace_.search,
                       &candidates);
+    state.search_radius = radius;
     result.runs = run;
     result.source_points_with_candidates = candidates.sourcePointsWithCandidates();
     if (result.source_points_with_candidates < static_cast<size_t>(p.min_correspondences)) {

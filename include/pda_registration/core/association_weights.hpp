@@ -15,6 +15,7 @@
 #include "pda_registration/core/associations.hpp"
 #include "pda_registration/core/candidate_sets.hpp"
 #include "pda_registration/core/noise_shapes.hpp"
+#include "pda_registration/core/outlier_class.hpp"
 #include "pda_registration/core/point_list.hpp"
 
 namespace pda_registration {
@@ -44,6 +45,10 @@ struct WeightedCorrespondences {
   /// sum_i P(a_i) u_i^2 (y_i - T x)(y_i - T x)^T per correspondence, only when the buffers ask
   /// for it (the covariance's observed information, pose_covariance.hpp); empty otherwise.
   std::vector<Eigen::Matrix3d> second_moment;
+  /// The sum of the correspondences' inlier responsibilities gamma_j (outlier_class.hpp), over all
+  /// and over those with a normal: the counts themselves without an outlier class. The weights and
+  /// spreads above already carry gamma_j; sigma's update divides by these.
+  double inlier_total = 0.0, inlier_total_with_normal = 0.0;
 
   size_t size() const { return source.size(); }
 };
@@ -52,9 +57,11 @@ struct WeightedCorrespondences {
 struct EStepBuffers {
   PointList means;
   std::vector<double> weights, across, along, log_u_minus_u;
-  bool nu_statistic = false;  ///< also compute mean_log_u_minus_u (a log per candidate)
+  bool nu_statistic = false;    ///< also compute mean_log_u_minus_u (a log per candidate)
   bool second_moments = false;  ///< also fill WeightedCorrespondences::second_moment
   std::vector<Eigen::Matrix3d> moments;
+  OutlierClass outliers;       ///< off unless the alignment asks for it (local_start.hpp)
+  std::vector<double> inlier;  ///< gamma_j per source point
 };
 
 /// Runs the E-step at the current estimate for every source point with candidates, each in its

@@ -105,6 +105,8 @@ class CandidateWeighting {
     kLogarithm,     ///< any other nu through one log and one exp (and nu's statistic)
     kIntegerPower,  ///< (nu + 3) / 2 a multiple of 1/2: repeated multiplication
   };
+  double nu() const { return nu_; }
+  double inverseSigmaSquared() const { return inverse_sigma_squared_; }
   Form form() const {
     return gaussian_ ? Form::kGaussian : (by_logarithm_ ? Form::kLogarithm : Form::kIntegerPower);
   }

@@ -30,6 +30,11 @@ struct EmState {
   Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
   double sigma_squared = 0.0;  ///< 0 until the first run estimates it
   double nu = 5.0;             ///< Student-t degrees of freedom (estimated or the parameter)
+  /// The outlier class (outlier_class.hpp): on for a local start only; its share w, estimated by
+  /// EM from 0.5 (as likely an outlier as not), and the run's search radius, its width.
+  bool outlier_class = false;
+  double outlier_share = 0.5;
+  double search_radius = 0.0;
 };
 
 /// Where a source point's target normal is read from the normal map. At its nearest candidate, a

@@ -71,6 +71,11 @@ class PdaRegistration {
   void trySecondStart(const PointList& source, const Eigen::Isometry3d& T_initial,
                       std::chrono::steady_clock::time_point started, RegistrationResult* result,
                       Associations* associations);
+  /// A failed result: once more from the seed with the outlier class, kept if that converges near
+  /// the seed (local_start.hpp).
+  void tryLocalStart(const PointList& source, const Eigen::Isometry3d& T_initial,
+                     std::chrono::steady_clock::time_point started, RegistrationResult* result,
+                     Associations* associations);
   /// A result that came to rest unresolved: once more from the seed with the radius widened,
   /// kept if that converges at a fit (wider_search.hpp).
   void tryWiderSearch(const PointList& source, const Eigen::Isometry3d& T_initial,
@@ -91,8 +96,9 @@ class PdaRegistration {
   void followSourceSpacing(const PointList& source, bool budgeted);
 
   RegistrationParameters parameters_;
-  double subset_voxel_ = 0.0;  // target_subset: the budgeted sources' spacing (0: whole target)
-  bool source_seen_ = false;   // target_subset: whether subset_voxel_ has been decided yet
+  double subset_voxel_ = 0.0;   // target_subset: the budgeted sources' spacing (0: whole target)
+  bool source_seen_ = false;    // target_subset: whether subset_voxel_ has been decided yet
+  bool outlier_class_ = false;  // the runs use the outlier class (a local start's alignment)
   TargetMap target_map_;
   RegistrationWorkspace workspace_;  // scratch memory kept between alignments
 };

@@ -1,0 +1,26 @@
+#include "pda_registration/core/local_start.hpp"
+
+#include <cmath>
+
+namespace pda_registration {
+
+bool localStartWarranted(const RegistrationResult& first, const RegistrationParameters& p) {
+  return !first.converged && !first.out_of_time && p.max_runs > 1 &&
+         p.sigma_mode == SigmaMode::kEstimated &&
+         first.source_points_used >= static_cast<size_t>(p.min_correspondences);
+}
+
+double rmsDisplacement(const PointList& source, const Eigen::Isometry3d& T_a,
+                       const Eigen::Isometry3d& T_b) {
+  if (source.empty()) return 0.0;
+  double sum = 0.0;
+  for (const Point& x : source) sum += (T_a * x - T_b * x).squaredNorm();
+  return std::sqrt(sum / static_cast<double>(source.size()));
+}
+
+bool localStartHolds(const RegistrationResult& local, const PointList& source,
+                     const Eigen::Isometry3d& T_initial, const RegistrationParameters& p) {
+  return local.converged && rmsDisplacement(source, local.T_target_source, T_initial) < p.radius;
+}
+
+}  // namespace pda_registration
