@@ -297,6 +297,7 @@ TEST(MapSimulation, FragmentsSharingAThirdAlignFromNearTheSeed) {
   const Eigen::Isometry3d initial = maps.T_target_source * randomPerturbation(2.0, 0.1, 1);
   const RegistrationResult result = registration.align(maps.sparse, initial);
   ASSERT_TRUE(result.converged) << result.reason;
+  EXPECT_TRUE(result.local_start);
   EXPECT_FALSE(result.roles_swapped);
   EXPECT_LT(poseError(maps.sparse, result.T_target_source, maps.T_target_source).mean_distance,
             0.02);

@@ -39,6 +39,10 @@ class NestedAlignment {
   ~NestedAlignment() { *live_ = user_; }
   /// False when the user's time limit is already spent: the nested alignment is not run.
   bool timeLeft() const { return time_left_; }
+  /// timeLeft(); when false, `result` notes that `nested` was cut by the time limit.
+  bool timeLeftOrNote(const char* nested, RegistrationResult* result) const;
+  /// Notes on `result` that `nested` was cut by the time limit, when it was and was not kept.
+  void noteIfCut(const char* nested, bool kept, bool cut, RegistrationResult* result) const;
 
  private:
   RegistrationParameters* live_;
@@ -69,6 +73,16 @@ void noteCutByTheTimeLimit(const char* nested, double time_limit_ms, Registratio
   reason << result->reason << "; " << nested << " was cut by the time limit of " << time_limit_ms
          << " ms";
   result->reason = reason.str();
+}
+
+bool NestedAlignment::timeLeftOrNote(const char* nested, RegistrationResult* result) const {
+  if (!time_left_) noteCutByTheTimeLimit(nested, user_.time_limit_ms, result);
+  return time_left_;
+}
+
+void NestedAlignment::noteIfCut(const char* nested, bool kept, bool cut,
+                                RegistrationResult* result) const {
+  if (!kept && cut) noteCutByTheTimeLimit(nested, user_.time_limit_ms, result);
 }
 
 // What a nested alignment leaves: its result (and associations) replace the first's when `keep`;
@@ -202,22 +216,19 @@ void PdaRegistration::tryLocalStart(const PointList& source, const Eigen::Isomet
                                     std::chrono::steady_clock::time_point started,
                                     RegistrationResult* result, Associations* associations) {
   if (!localStartWarranted(*result, parameters_)) return;
-  const double time_limit_ms = parameters_.time_limit_ms;
   const NestedAlignment nested(&parameters_, started);
-  if (!nested.timeLeft()) {
-    noteCutByTheTimeLimit("a local start", time_limit_ms, result);
-    return;
-  }
+  if (!nested.timeLeftOrNote("a local start", result)) return;
   Associations local_associations;
   RegistrationResult local;
   {
     const ScopedFlag with_outlier_class(&outlier_class_);
     local = alignUnchecked(source, T_initial, associations ? &local_associations : nullptr);
   }
+  local.local_start = true;
   const bool holds = localStartHolds(local, workspace_.source, T_initial, parameters_);
   const bool cut = local.out_of_time;
   adoptNested(holds, &local, &local_associations, result, associations);
-  if (!holds && cut) noteCutByTheTimeLimit("a local start", time_limit_ms, result);
+  nested.noteIfCut("a local start", holds, cut, result);
 }
 
 void PdaRegistration::tryOtherDirection(const PointList& source, const Eigen::Isometry3d& T_initial,
@@ -232,20 +243,16 @@ void PdaRegistration::tryOtherDirection(const PointList& source, const Eigen::Is
       !sourceIsDenser(countInOverlap(target->points(), source, T_initial))) {
     return;
   }
-  const double time_limit_ms = parameters_.time_limit_ms;
   const NestedAlignment nested(&parameters_, started);
-  if (!nested.timeLeft()) {
-    noteCutByTheTimeLimit("the other direction", time_limit_ms, result);
-    return;
-  }
+  if (!nested.timeLeftOrNote("the other direction", result)) return;
   Associations swapped_associations;
   RegistrationResult swapped =
       alignSwapped(source, T_initial, associations ? &swapped_associations : nullptr);
   if (swapped.converged) {
     *result = std::move(swapped);
     if (associations) *associations = std::move(swapped_associations);
-  } else if (swapped.out_of_time) {
-    noteCutByTheTimeLimit("the other direction", time_limit_ms, result);
+  } else {
+    nested.noteIfCut("the other direction", false, swapped.out_of_time, result);
   }
 }
 
@@ -255,10 +262,7 @@ void PdaRegistration::tryWiderSearch(const PointList& source, const Eigen::Isome
   if (!widerSearchWarranted(*result, parameters_)) return;
   const RegistrationParameters user = parameters_;
   const NestedAlignment nested(&parameters_, started);
-  if (!nested.timeLeft()) {
-    noteCutByTheTimeLimit("a wider search", user.time_limit_ms, result);
-    return;
-  }
+  if (!nested.timeLeftOrNote("a wider search", result)) return;
   parameters_ = widerSearchParameters(parameters_);  // the user's, with what is left of the time
   Associations wide_associations;
   RegistrationResult wide =
@@ -267,7 +271,7 @@ void PdaRegistration::tryWiderSearch(const PointList& source, const Eigen::Isome
   const bool holds = widerSearchHolds(wide, user);
   const bool cut = wide.out_of_time;
   adoptNested(holds, &wide, &wide_associations, result, associations);
-  if (!holds && cut) noteCutByTheTimeLimit("a wider search", user.time_limit_ms, result);
+  nested.noteIfCut("a wider search", holds, cut, result);
 }
 
 RegistrationResult PdaRegistration::alignSwapped(const PointList& source,

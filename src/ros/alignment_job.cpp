@@ -129,8 +129,8 @@ void AlignmentJob::run(const SparseJob& job, const LiveParameters& live) {
   // One from the seed (the first, or a retry) is never cut: it is what starts the track. Nor is
   // the one after kMaxAbandonedInARow cut ones: a machine too slow for the sensor still answers.
   const double period_s = c_.rate_budget->period();
-  const bool deadline = live.deadline_periods > 0.0 && period_s > 0.0 &&
-                        abandoned_in_a_row_ < kMaxAbandonedInARow;
+  const bool deadline =
+      live.deadline_periods > 0.0 && period_s > 0.0 && abandoned_in_a_row_ < kMaxAbandonedInARow;
   const double warm_time_limit_ms = deadline ? 1000.0 * live.deadline_periods * period_s : 0.0;
 
   // Beyond max_source_points the core aligns a subsample (source_budget.hpp: at random, or spread
@@ -174,6 +174,7 @@ void AlignmentJob::run(const SparseJob& job, const LiveParameters& live) {
     s.target_cropped = result.target_cropped;
     s.roles_swapped = result.roles_swapped;
     s.search_widened = result.search_widened;
+    s.local_start = result.local_start;
     s.warp_polished = result.warp_polished;
     s.source_points_used = result.source_points_used;
     s.source_points_received = source_points->size();

@@ -122,6 +122,7 @@ int main(int argc, char** argv) {
     json.add("normal_voxel_size", r.normal_voxel_size);
     json.add("roles_swapped", r.roles_swapped);
     json.add("search_widened", r.search_widened);
+    json.add("local_start", r.local_start);
     json.add("warp_polished", r.warp_polished);
     json.add("target_index_ms", r.target_index_ms);
     json.add("source_with_candidates", r.source_points_with_candidates);
@@ -138,7 +139,10 @@ int main(int argc, char** argv) {
     json.add("competing_shift_m", r.competing_shift).add("competing_share", r.competing_share);
     json.add("covariance_ms", r.covariance_ms);
   } else {
-    json.addRaw("runs", "null").addRaw("sigma", "null").addRaw("nu", "null").addRaw("inlier_fraction", "null");
+    json.addRaw("runs", "null")
+        .addRaw("sigma", "null")
+        .addRaw("nu", "null")
+        .addRaw("inlier_fraction", "null");
     json.add("fitness", outcome.fitness);
   }
   if (has_ground_truth) {

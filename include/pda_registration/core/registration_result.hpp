@@ -27,7 +27,7 @@ struct RegistrationResult {
   double competing_share = 0.0;  ///< that pose's share of the two poses' support (0: none)
 
   bool converged = false;
-  std::string reason;        ///< why not converged (empty when converged)
+  std::string reason;  ///< why not converged (empty when converged)
   /// Stopped by time_limit_ms before it came to rest, or failed with the other direction or a
   /// wider search still to try when the limit cut them (the reason says which).
   bool out_of_time = false;
@@ -37,11 +37,11 @@ struct RegistrationResult {
   double sigma = 0.0;     ///< final residual scale [length]
   double nu = 0.0;        ///< Student-t degrees of freedom at the end (estimated or the parameter)
 
-  size_t source_points_used = 0;             ///< finite source points after downsampling
-  size_t source_points_dropped = 0;          ///< NaN/Inf source points dropped
-  size_t target_points_used = 0;             ///< target points indexed (after any crop)
-  size_t target_points_total = 0;            ///< finite target points kept (before any crop)
-  bool target_cropped = false;               ///< the index covers only the source's reach
+  size_t source_points_used = 0;     ///< finite source points after downsampling
+  size_t source_points_dropped = 0;  ///< NaN/Inf source points dropped
+  size_t target_points_used = 0;     ///< target points indexed (after any crop)
+  size_t target_points_total = 0;    ///< finite target points kept (before any crop)
+  bool target_cropped = false;       ///< the index covers only the source's reach
   double target_subset_voxel = 0.0;  ///< [length] grid of the indexed voxel means (0: every point)
   /// [length] finest voxel of the target's normal map: normal_voxel_size, or the target's
   /// scan-line scale where that is larger (scan_line_scale.hpp)
@@ -53,11 +53,14 @@ struct RegistrationResult {
   /// The first alignment ended unresolved (sigma as wide as its search); this is the one from the
   /// seed with the radius widened (wider_search.hpp; its overlap and support within that radius).
   bool search_widened = false;
+  /// The first alignment did not converge; this is the one from the seed with the outlier class,
+  /// kept near the seed (local_start.hpp).
+  bool local_start = false;
   /// The halves of the overlap disagreed: the result was refined on with Gaussian weights, to the
   /// least-squares fit over the warped overlap (warp_polish.hpp); nu is then infinity.
   bool warp_polished = false;
-  double target_index_ms = 0.0;  ///< time this call spent (re)indexing the target (in time_ms)
-  size_t target_points_dropped = 0;          ///< NaN/Inf target points dropped
+  double target_index_ms = 0.0;      ///< time this call spent (re)indexing the target (in time_ms)
+  size_t target_points_dropped = 0;  ///< NaN/Inf target points dropped
   size_t source_points_with_candidates = 0;  ///< in the last run
   double inlier_fraction = 0.0;  ///< source points whose best residual is under inlier_sigmas*sigma
   /// Source points with a target point within `radius` at the final estimate: where the two
@@ -66,7 +69,7 @@ struct RegistrationResult {
   size_t overlap_points = 0;
   /// Inliers among the overlap_points: what the verdict's min_support_fraction is compared with.
   double support_fraction = 0.0;
-  double mean_residual = 0.0;    ///< [length] mean distance to the best candidate, inliers only
+  double mean_residual = 0.0;     ///< [length] mean distance to the best candidate, inliers only
   double degeneracy_ratio = 0.0;  ///< min/max eigenvalue of the point-to-plane constraint matrix
   double time_ms = 0.0;  ///< wall time of align(), including any (re)indexing of a large target
 };
