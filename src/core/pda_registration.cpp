@@ -50,19 +50,6 @@ class NestedAlignment {
   bool time_left_ = true;
 };
 
-// True for as long as it lives, whatever ends its scope (align() catches what alignUnchecked
-// throws).
-class ScopedFlag {
- public:
-  explicit ScopedFlag(bool* flag) : flag_(flag) { *flag_ = true; }
-  ScopedFlag(const ScopedFlag&) = delete;
-  ScopedFlag& operator=(const ScopedFlag&) = delete;
-  ~ScopedFlag() { *flag_ = false; }
-
- private:
-  bool* flag_;
-};
-
 // A failed result whose nested alignment (the other direction, a wider search) was cut by the
 // user's time limit, or found none of it left, is the deadline's verdict, not the data's: it
 // says so, and a caller with a deadline (the nodelet's warm attempts) does not retry it from
@@ -219,11 +206,9 @@ void PdaRegistration::tryLocalStart(const PointList& source, const Eigen::Isomet
   const NestedAlignment nested(&parameters_, started);
   if (!nested.timeLeftOrNote("a local start", result)) return;
   Associations local_associations;
-  RegistrationResult local;
-  {
-    const ScopedFlag with_outlier_class(&outlier_class_);
-    local = alignUnchecked(source, T_initial, associations ? &local_associations : nullptr);
-  }
+  RegistrationResult local =
+      alignUnchecked(source, T_initial, associations ? &local_associations : nullptr,
+                     /*abandon_in=*/nullptr, /*with_outlier_class=*/true);
   local.local_start = true;
   const bool holds = localStartHolds(local, workspace_.source, T_initial, parameters_);
   const bool cut = local.out_of_time;

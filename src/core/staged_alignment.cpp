@@ -39,7 +39,8 @@ bool sanitiseInitialGuess(const Eigen::Isometry3d& initial, Eigen::Isometry3d* o
 RegistrationResult PdaRegistration::alignUnchecked(const PointList& source_input,
                                                    const Eigen::Isometry3d& T_target_source_initial,
                                                    Associations* associations,
-                                                   const FirstResultBasin* abandon_in) {
+                                                   const FirstResultBasin* abandon_in,
+                                                   bool with_outlier_class) {
   const auto started = std::chrono::steady_clock::now();
   const RegistrationParameters& p = parameters_;
   RegistrationResult result;
@@ -137,7 +138,7 @@ RegistrationResult PdaRegistration::alignUnchecked(const PointList& source_input
   EmState state;
   state.T = T;
   state.nu = p.nu;
-  state.outlier_class = outlier_class_;
+  state.outlier_class = with_outlier_class;
   if (p.sigma_mode == SigmaMode::kFixed) state.sigma_squared = p.fixed_sigma * p.fixed_sigma;
   CandidateSets& candidates = workspace_.candidates;
   Increment last_run_step{0.0, 0.0};

@@ -5,8 +5,9 @@
 // of the source with no counterpart still find candidates within the 1-m radius (indoors no wall
 // is a metre away), hold sigma at 0.14-0.18 m and pull the source along the walkway until the work
 // bound. The outlier class gives those points no say, and from a seed that close sigma falls to
-// the noise (6 mm) within a few runs and stays at the truth (simulated, seed 5: 0 -> 5, 3, 3 of 5
-// at 2, 5, 10 deg; docs/benchmark.md, "RGB-D fragments that share less").
+// the noise (6 mm) within a few runs and stays at the truth (simulated, seed 5: 0 -> 5 and 3 of 5
+// at 2 and 5 deg; from 10 deg 1 of 5, the right answer lying further than the bound below;
+// docs/benchmark.md, "RGB-D fragments that share less").
 //
 // Its reach is short: a true counterpart further than a few sigma looks like no counterpart, so
 // from far off it converges, as readily, to a nearby false fit. Hence it runs only where the usual

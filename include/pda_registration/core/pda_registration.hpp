@@ -62,10 +62,12 @@ class PdaRegistration {
  private:
   TargetIndexing indexing() const;
   /// `abandon_in`: a second start stops (not converged) once it enters the first's basin.
+  /// `with_outlier_class`: every run uses the outlier class (a local start, local_start.hpp).
   RegistrationResult alignUnchecked(const PointList& source,
                                     const Eigen::Isometry3d& T_target_source_initial,
                                     Associations* associations,
-                                    const FirstResultBasin* abandon_in = nullptr);
+                                    const FirstResultBasin* abandon_in = nullptr,
+                                    bool with_outlier_class = false);
   /// Second alignments from the rotation the first found (two starts, in turn), the first that is
   /// better kept (second_start.hpp).
   void trySecondStart(const PointList& source, const Eigen::Isometry3d& T_initial,
@@ -96,9 +98,8 @@ class PdaRegistration {
   void followSourceSpacing(const PointList& source, bool budgeted);
 
   RegistrationParameters parameters_;
-  double subset_voxel_ = 0.0;   // target_subset: the budgeted sources' spacing (0: whole target)
-  bool source_seen_ = false;    // target_subset: whether subset_voxel_ has been decided yet
-  bool outlier_class_ = false;  // the runs use the outlier class (a local start's alignment)
+  double subset_voxel_ = 0.0;  // target_subset: the budgeted sources' spacing (0: whole target)
+  bool source_seen_ = false;   // target_subset: whether subset_voxel_ has been decided yet
   TargetMap target_map_;
   RegistrationWorkspace workspace_;  // scratch memory kept between alignments
 };
