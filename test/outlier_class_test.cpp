@@ -9,6 +9,7 @@
 #include <random>
 
 #include "pda_registration/core/association_weights.hpp"
+#include "pda_registration/core/degrees_of_freedom.hpp"
 #include "pda_registration/core/local_start.hpp"
 
 namespace pda_registration {
@@ -108,12 +109,19 @@ TEST(LocalStart, KeptOnlyWhenConvergedNearTheSeed) {
 
   RegistrationResult first;
   first.source_points_used = 1000;
-  EXPECT_TRUE(localStartWarranted(first, p));
+  EXPECT_TRUE(localStartWarranted(first, p, 0.0));
   first.out_of_time = true;
-  EXPECT_FALSE(localStartWarranted(first, p));  // the deadline's verdict, not the data's
+  EXPECT_FALSE(localStartWarranted(first, p, 0.0));  // the deadline's verdict, not the data's
   first.out_of_time = false;
   first.converged = true;
-  EXPECT_FALSE(localStartWarranted(first, p));  // a converged result is never second-guessed
+  first.nu = kMinDegreesOfFreedom;
+  EXPECT_FALSE(localStartWarranted(first, p, 0.5));  // converged within the seed's candidates
+  EXPECT_TRUE(localStartWarranted(first, p, 2.7));   // slid away, half the points fit
+  first.nu = 3.0;
+  EXPECT_FALSE(localStartWarranted(first, p, 2.7));  // slid away onto a fit of the whole overlap
+  first.nu = kMinDegreesOfFreedom;
+  p.nu_mode = NuMode::kFixed;
+  EXPECT_FALSE(localStartWarranted(first, p, 2.7));  // nu at the floor says nothing when fixed
 }
 
 }  // namespace

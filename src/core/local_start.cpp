@@ -2,12 +2,20 @@
 
 #include <cmath>
 
+#include "pda_registration/core/degrees_of_freedom.hpp"
+
 namespace pda_registration {
 
-bool localStartWarranted(const RegistrationResult& first, const RegistrationParameters& p) {
-  return !first.converged && !first.out_of_time && p.max_runs > 1 &&
-         p.sigma_mode == SigmaMode::kEstimated &&
-         first.source_points_used >= static_cast<size_t>(p.min_correspondences);
+bool localStartWarranted(const RegistrationResult& first, const RegistrationParameters& p,
+                         double moved_from_seed) {
+  if (first.out_of_time || p.max_runs <= 1 || p.sigma_mode != SigmaMode::kEstimated ||
+      first.source_points_used < static_cast<size_t>(p.min_correspondences)) {
+    return false;
+  }
+  if (!first.converged) return true;
+  // The ECM update clamps nu to the floor: an estimate there is exactly the floor.
+  return p.nu_mode != NuMode::kFixed && first.nu <= kMinDegreesOfFreedom &&
+         moved_from_seed >= p.radius;
 }
 
 double rmsDisplacement(const PointList& source, const Eigen::Isometry3d& T_a,

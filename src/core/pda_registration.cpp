@@ -202,9 +202,14 @@ void PdaRegistration::trySecondStart(const PointList& source, const Eigen::Isome
 void PdaRegistration::tryLocalStart(const PointList& source, const Eigen::Isometry3d& T_initial,
                                     std::chrono::steady_clock::time_point started,
                                     RegistrationResult* result, Associations* associations) {
-  if (!localStartWarranted(*result, parameters_)) return;
+  const double moved = rmsDisplacement(workspace_.source, result->T_target_source, T_initial);
+  if (!localStartWarranted(*result, parameters_, moved)) return;
   const NestedAlignment nested(&parameters_, started);
-  if (!nested.timeLeftOrNote("a local start", result)) return;
+  // A converged result stands when there is no time to question it; a failed one says why.
+  const bool first_converged = result->converged;
+  if (first_converged ? !nested.timeLeft() : !nested.timeLeftOrNote("a local start", result)) {
+    return;
+  }
   Associations local_associations;
   RegistrationResult local =
       alignUnchecked(source, T_initial, associations ? &local_associations : nullptr,
@@ -213,7 +218,7 @@ void PdaRegistration::tryLocalStart(const PointList& source, const Eigen::Isomet
   const bool holds = localStartHolds(local, workspace_.source, T_initial, parameters_);
   const bool cut = local.out_of_time;
   adoptNested(holds, &local, &local_associations, result, associations);
-  nested.noteIfCut("a local start", holds, cut, result);
+  if (!first_converged) nested.noteIfCut("a local start", holds, cut, result);
 }
 
 void PdaRegistration::tryOtherDirection(const PointList& source, const Eigen::Isometry3d& T_initial,

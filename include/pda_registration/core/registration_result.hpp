@@ -53,8 +53,8 @@ struct RegistrationResult {
   /// The first alignment ended unresolved (sigma as wide as its search); this is the one from the
   /// seed with the radius widened (wider_search.hpp; its overlap and support within that radius).
   bool search_widened = false;
-  /// The first alignment did not converge; this is the one from the seed with the outlier class,
-  /// kept near the seed (local_start.hpp).
+  /// The first alignment failed, or slid away from the seed; this is the one from the seed with
+  /// the outlier class, kept near the seed (local_start.hpp).
   bool local_start = false;
   /// The halves of the overlap disagreed: the result was refined on with Gaussian weights, to the
   /// least-squares fit over the warped overlap (warp_polish.hpp); nu is then infinity.
