@@ -91,21 +91,22 @@ TEST(OutlierClass, NearPointsCountFarPointsDoNot) {
   EXPECT_FALSE(outlierClassFor(0.5, 0.0, 5.0).on());
 }
 
-TEST(LocalStart, KeptOnlyWhenConvergedNearTheSeed) {
+TEST(LocalStart, RunsWhereTheFirstFailedOrSlidAndStaysNearTheSeed) {
   PointList source;
   for (int i = 0; i < 10; ++i) source.push_back(Point(i, -i, 0.5 * i));
   const Eigen::Isometry3d seed = Eigen::Isometry3d::Identity();
   RegistrationParameters p;  // radius 1 m
-  RegistrationResult local;
-  local.converged = true;
-  local.T_target_source = Eigen::Isometry3d(Eigen::Translation3d(0.3, 0.2, 0.0));
-  EXPECT_NEAR(rmsDisplacement(source, local.T_target_source, seed), std::hypot(0.3, 0.2), 1e-12);
-  EXPECT_TRUE(localStartHolds(local, source, seed, p));
-  local.T_target_source = Eigen::Isometry3d(Eigen::Translation3d(2.6, 0.0, 0.0));
-  EXPECT_FALSE(localStartHolds(local, source, seed, p));  // a fit beyond the seed's candidates
-  local.T_target_source = seed;
-  local.converged = false;
-  EXPECT_FALSE(localStartHolds(local, source, seed, p));
+  const Eigen::Isometry3d near_seed(Eigen::Translation3d(0.3, 0.2, 0.0));
+  EXPECT_NEAR(rmsDisplacement(source, near_seed, seed), std::hypot(0.3, 0.2), 1e-12);
+  EXPECT_TRUE(localStartStaysNear(source, near_seed, seed, p));
+  // A fit beyond the seed's candidates: the local start stops there, and is not kept.
+  EXPECT_FALSE(localStartStaysNear(source, Eigen::Isometry3d(Eigen::Translation3d(2.6, 0, 0)),
+                                   seed, p));
+  // 6 deg about the origin moves these points (up to 12.7 m out) 0.79 m in RMS; 8 deg 1.05 m.
+  EXPECT_TRUE(localStartStaysNear(
+      source, Eigen::Isometry3d(Eigen::AngleAxisd(6.0 * M_PI / 180.0, Point::UnitZ())), seed, p));
+  EXPECT_FALSE(localStartStaysNear(
+      source, Eigen::Isometry3d(Eigen::AngleAxisd(8.0 * M_PI / 180.0, Point::UnitZ())), seed, p));
 
   RegistrationResult first;
   first.source_points_used = 1000;

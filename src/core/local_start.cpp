@@ -26,9 +26,9 @@ double rmsDisplacement(const PointList& source, const Eigen::Isometry3d& T_a,
   return std::sqrt(sum / static_cast<double>(source.size()));
 }
 
-bool localStartHolds(const RegistrationResult& local, const PointList& source,
-                     const Eigen::Isometry3d& T_initial, const RegistrationParameters& p) {
-  return local.converged && rmsDisplacement(source, local.T_target_source, T_initial) < p.radius;
+bool localStartStaysNear(const PointList& source, const Eigen::Isometry3d& T,
+                         const Eigen::Isometry3d& T_initial, const RegistrationParameters& p) {
+  return rmsDisplacement(source, T, T_initial) < p.radius;
 }
 
 }  // namespace pda_registration

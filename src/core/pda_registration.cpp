@@ -213,9 +213,11 @@ void PdaRegistration::tryLocalStart(const PointList& source, const Eigen::Isomet
   Associations local_associations;
   RegistrationResult local =
       alignUnchecked(source, T_initial, associations ? &local_associations : nullptr,
-                     /*abandon_in=*/nullptr, /*with_outlier_class=*/true);
+                     /*abandon_in=*/nullptr, /*local_start=*/true);
   local.local_start = true;
-  const bool holds = localStartHolds(local, workspace_.source, T_initial, parameters_);
+  const bool holds = local.converged &&
+                     localStartStaysNear(workspace_.source, local.T_target_source, T_initial,
+                                         parameters_);
   const bool cut = local.out_of_time;
   adoptNested(holds, &local, &local_associations, result, associations);
   if (!first_converged) nested.noteIfCut("a local start", holds, cut, result);

@@ -12,6 +12,7 @@
 #include "pda_registration/core/candidate_sets.hpp"
 #include "pda_registration/core/em_run.hpp"
 #include "pda_registration/core/final_statistics.hpp"
+#include "pda_registration/core/local_start.hpp"
 #include "pda_registration/core/nearest_rotation.hpp"
 #include "pda_registration/core/point_filter.hpp"
 #include "pda_registration/core/run_extrapolation.hpp"
@@ -40,7 +41,7 @@ RegistrationResult PdaRegistration::alignUnchecked(const PointList& source_input
                                                    const Eigen::Isometry3d& T_target_source_initial,
                                                    Associations* associations,
                                                    const FirstResultBasin* abandon_in,
-                                                   bool with_outlier_class) {
+                                                   bool local_start) {
   const auto started = std::chrono::steady_clock::now();
   const RegistrationParameters& p = parameters_;
   RegistrationResult result;
@@ -138,7 +139,7 @@ RegistrationResult PdaRegistration::alignUnchecked(const PointList& source_input
   EmState state;
   state.T = T;
   state.nu = p.nu;
-  state.outlier_class = with_outlier_class;
+  state.outlier_class = local_start;
   if (p.sigma_mode == SigmaMode::kFixed) state.sigma_squared = p.fixed_sigma * p.fixed_sigma;
   CandidateSets& candidates = workspace_.candidates;
   Increment last_run_step{0.0, 0.0};
@@ -214,6 +215,12 @@ RegistrationResult PdaRegistration::alignUnchecked(const PointList& source_input
     }
     if (abandon_in && abandon_in->contains(state.T)) {
       result.reason = "second start: back in the first result's basin";
+      return result;
+    }
+    // A local start that has left the seed's neighbourhood would not be kept: a lidar scan's
+    // from 20 deg wandered 2-7 m off over 12-58 runs (doubling the time of a right answer).
+    if (local_start && !localStartStaysNear(source, state.T, T_target_source_initial, p)) {
+      result.reason = "local start: left the seed's neighbourhood";
       return result;
     }
     // An approach that comes to rest with residuals as wide as the search is not at a fit (the

@@ -62,12 +62,13 @@ class PdaRegistration {
  private:
   TargetIndexing indexing() const;
   /// `abandon_in`: a second start stops (not converged) once it enters the first's basin.
-  /// `with_outlier_class`: every run uses the outlier class (a local start, local_start.hpp).
+  /// `local_start`: every run uses the outlier class, and the alignment stops (not converged) once
+  /// it moves the source further from the seed than its answer could be kept (local_start.hpp).
   RegistrationResult alignUnchecked(const PointList& source,
                                     const Eigen::Isometry3d& T_target_source_initial,
                                     Associations* associations,
                                     const FirstResultBasin* abandon_in = nullptr,
-                                    bool with_outlier_class = false);
+                                    bool local_start = false);
   /// Second alignments from the rotation the first found (two starts, in turn), the first that is
   /// better kept (second_start.hpp).
   void trySecondStart(const PointList& source, const Eigen::Isometry3d& T_initial,
