@@ -217,8 +217,9 @@ RegistrationResult PdaRegistration::alignUnchecked(const PointList& source_input
       result.reason = "second start: back in the first result's basin";
       return result;
     }
-    // A local start that has left the seed's neighbourhood would not be kept: a lidar scan's
-    // from 20 deg wandered 2-7 m off over 12-58 runs (doubling the time of a right answer).
+    // A local start that has left the seed's neighbourhood would not be kept: run after a lidar
+    // scan pair's right answer from 20 deg, one wandered 2-7 m off over 12-58 runs, doubling the
+    // time of the alignment.
     if (local_start && !localStartStaysNear(source, state.T, T_target_source_initial, p)) {
       result.reason = "local start: left the seed's neighbourhood";
       return result;
