@@ -5,6 +5,10 @@
 
 namespace pda_registration {
 
+bool nuEstimatedAtFloor(const RegistrationParameters& p, double nu) {
+  return p.nu_mode != NuMode::kFixed && nu <= kMinDegreesOfFreedom;
+}
+
 double digamma(double x) {
   // Recurrence psi(x) = psi(x + 1) - 1/x up to x >= 10, then the asymptotic series to x^-8
   // (the next term is below 1e-12 there).

@@ -13,9 +13,7 @@ bool localStartWarranted(const RegistrationResult& first, const RegistrationPara
     return false;
   }
   if (!first.converged) return true;
-  // The ECM update clamps nu to the floor: an estimate there is exactly the floor.
-  return p.nu_mode != NuMode::kFixed && first.nu <= kMinDegreesOfFreedom &&
-         moved_from_seed >= p.radius;
+  return nuEstimatedAtFloor(p, first.nu) && moved_from_seed >= p.radius;
 }
 
 double rmsDisplacement(const PointList& source, const Eigen::Isometry3d& T_a,

@@ -22,9 +22,7 @@ std::array<Eigen::Isometry3d, 2> secondStartPoses(const Eigen::Isometry3d& T_fou
 bool secondStartWarranted(const RegistrationResult& first, const RegistrationParameters& p,
                           const Eigen::Isometry3d& T_initial, const Point& centroid,
                           double final_radius) {
-  if (!first.converged || p.nu_mode == NuMode::kFixed || p.max_runs <= 1) return false;
-  // The ECM update clamps nu to the floor: an estimate there is exactly the floor.
-  if (!(first.nu <= kMinDegreesOfFreedom)) return false;
+  if (!first.converged || p.max_runs <= 1 || !nuEstimatedAtFloor(p, first.nu)) return false;
   const double centroid_moved = (first.T_target_source * centroid - T_initial * centroid).norm();
   return centroid_moved > final_radius;
 }

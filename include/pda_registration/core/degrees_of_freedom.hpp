@@ -11,12 +11,19 @@
 // saw, sampling coincidences, non-rigid drift) differs from pair to pair; a constant nu suits
 // some and not others, so nu follows the data like sigma does.
 
+#include "pda_registration/core/registration_parameters.hpp"
+
 namespace pda_registration {
 
 /// Bounds of the estimate. Below 1 the t has no mean; above kMaxDegreesOfFreedom it is Gaussian
 /// for every residual EM meets.
 constexpr double kMinDegreesOfFreedom = 1.0;
 constexpr double kMaxDegreesOfFreedom = 60.0;
+
+/// True when nu is estimated from the data (not fixed) and the estimate sits at the floor: the
+/// residuals are as heavy-tailed as the model allows, the mark of a result that rests on a
+/// fraction of the points. The ECM update clamps nu to the floor, so an estimate there is exactly it.
+bool nuEstimatedAtFloor(const RegistrationParameters& p, double nu);
 
 /// The digamma function psi(x) for x > 0.
 double digamma(double x);
