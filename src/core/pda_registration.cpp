@@ -147,11 +147,8 @@ RegistrationResult PdaRegistration::align(const PointList& source,
   try {
     result = alignUnchecked(source, T_target_source_initial, associations);
     trySecondStart(source, T_target_source_initial, start, &result, associations);
-    // The other direction before the local start: where the source is the denser cloud, the
-    // swapped model is the answer (a local start on the dense source failed there too, and
-    // tripled the reversed room's time).
-    tryOtherDirection(source, T_target_source_initial, start, &result, associations);
     tryLocalStart(source, T_target_source_initial, start, &result, associations);
+    tryOtherDirection(source, T_target_source_initial, start, &result, associations);
     tryWiderSearch(source, T_target_source_initial, start, &result, associations);
   } catch (const std::exception& error) {
     if (associations) *associations = Associations();
@@ -205,7 +202,6 @@ void PdaRegistration::trySecondStart(const PointList& source, const Eigen::Isome
 void PdaRegistration::tryLocalStart(const PointList& source, const Eigen::Isometry3d& T_initial,
                                     std::chrono::steady_clock::time_point started,
                                     RegistrationResult* result, Associations* associations) {
-  if (result->roles_swapped) return;  // a converged other direction: nothing to question
   const double moved = rmsDisplacement(workspace_.source, result->T_target_source, T_initial);
   if (!localStartWarranted(*result, parameters_, moved)) return;
   const NestedAlignment nested(&parameters_, started);
