@@ -189,6 +189,8 @@ TEST(PdaAlign, UsageErrorsExitWithCodeTwoAndOneLine) {
       {"--target '/nonexistent\n.pcd' --source " + data + "source.pcd",
        "cannot open '/nonexistent\\n.pcd'"},
       {"--target " + garbage + " --source " + data + "source.pcd", "not a readable pcd"},
+      {clouds + " --trace --compare icp", "--trace: traces one alignment"},
+      {clouds + " --trace --method gicp", "--trace: only PDA's runs"},
   };
   for (const auto& c : cases) {
     const CommandRun run = runPdaAlign(c.first);
@@ -228,6 +230,36 @@ TEST(PdaAlign, AlignsARealCaseAndReportsErrorsAgainstGroundTruth) {
   ASSERT_TRUE(readTransformFile(output, &written, &error)) << error;
   ASSERT_TRUE(readTransformFile(data + "T_target_source.txt", &truth, &error));
   EXPECT_LT((written.translation() - truth.translation()).norm(), 0.03);
+}
+
+// --trace: one JSON line per run and per attempt on stderr; stdout keeps its one line.
+TEST(PdaAlign, TracesEveryRunAndAttemptOnStderr) {
+  const std::string data = testing_support::sharedDataDirectory() + "/room_scan/";
+  const CommandRun run =
+      runPdaAlign("--target " + data + "target.pcd --source " + data + "source.pcd --initial " +
+                  data + "T_target_source.txt --perturb 5,0.25 --seed 3 --trace");
+  ASSERT_EQ(run.exit_code, 0) << run.err;
+  EXPECT_EQ(lineCount(run.out), 1u);
+  const double runs = jsonNumber(run.out, "runs");
+  ASSERT_GT(runs, 1.0);
+  std::istringstream lines(run.err);
+  std::string line;
+  int run_lines = 0, attempt_lines = 0;
+  while (std::getline(lines, line)) {
+    if (line.rfind("{\"trace\":\"run\",\"attempt\":\"first\"", 0) == 0) {
+      ++run_lines;
+      EXPECT_EQ(jsonNumber(line, "run"), run_lines) << line;
+      EXPECT_GT(jsonNumber(line, "sigma"), 0.0) << line;
+    } else if (line.rfind("{\"trace\":\"attempt\"", 0) == 0) {
+      ++attempt_lines;
+      EXPECT_NE(line.find("\"adopted\":true"), std::string::npos) << line;
+      EXPECT_EQ(jsonNumber(line, "runs"), runs) << line;
+    } else {
+      ADD_FAILURE() << "not a trace line: " << line;
+    }
+  }
+  EXPECT_EQ(run_lines, static_cast<int>(runs));
+  EXPECT_EQ(attempt_lines, 1);
 }
 
 TEST(PdaAlign, ComparesWithPclIcpInOneRun) {

@@ -72,6 +72,19 @@ void NestedAlignment::noteIfCut(const char* nested, bool kept, bool cut,
   if (!kept && cut) noteCutByTheTimeLimit(nested, user_.time_limit_ms, result);
 }
 
+// Names the attempt that align() runs while it lives (the trace's label), then restores the last.
+class AttemptLabel {
+ public:
+  AttemptLabel(const char** live, const char* name) : live_(live), before_(*live) { *live = name; }
+  AttemptLabel(const AttemptLabel&) = delete;
+  AttemptLabel& operator=(const AttemptLabel&) = delete;
+  ~AttemptLabel() { *live_ = before_; }
+
+ private:
+  const char** live_;
+  const char* before_;
+};
+
 // What a nested alignment leaves: its result (and associations) replace the first's when `keep`;
 // either way the answer counts the indexing both did in this call.
 void adoptNested(bool keep, RegistrationResult* nested, Associations* nested_associations,
@@ -146,6 +159,7 @@ RegistrationResult PdaRegistration::align(const PointList& source,
   RegistrationResult result;
   try {
     result = alignUnchecked(source, T_target_source_initial, associations);
+    traceAttempt(result, /*adopted=*/true, start);
     trySecondStart(source, T_target_source_initial, start, &result, associations);
     tryLocalStart(source, T_target_source_initial, start, &result, associations);
     tryOtherDirection(source, T_target_source_initial, start, &result, associations);
@@ -189,11 +203,13 @@ void PdaRegistration::trySecondStart(const PointList& source, const Eigen::Isome
     if (basin.contains(start) || (tried && basin.near(*tried, start))) continue;
     tried = &start;
     const NestedAlignment nested(&parameters_, started);
+    const AttemptLabel label(&attempt_, "second start");
     if (!nested.timeLeft()) return;
     Associations second_associations;
     RegistrationResult second =
         alignUnchecked(source, start, associations ? &second_associations : nullptr, &basin);
     const bool better = secondStartIsBetter(*result, second);
+    traceAttempt(second, better, started);
     adoptNested(better, &second, &second_associations, result, associations);
     if (better) return;
   }
@@ -210,6 +226,7 @@ void PdaRegistration::tryLocalStart(const PointList& source, const Eigen::Isomet
   if (first_converged ? !nested.timeLeft() : !nested.timeLeftOrNote("a local start", result)) {
     return;
   }
+  const AttemptLabel label(&attempt_, "local start");
   Associations local_associations;
   RegistrationResult local =
       alignUnchecked(source, T_initial, associations ? &local_associations : nullptr,
@@ -219,6 +236,7 @@ void PdaRegistration::tryLocalStart(const PointList& source, const Eigen::Isomet
                      localStartStaysNear(workspace_.source, local.T_target_source, T_initial,
                                          parameters_);
   const bool cut = local.out_of_time;
+  traceAttempt(local, holds, started);
   adoptNested(holds, &local, &local_associations, result, associations);
   if (!first_converged) nested.noteIfCut("a local start", holds, cut, result);
 }
@@ -237,9 +255,11 @@ void PdaRegistration::tryOtherDirection(const PointList& source, const Eigen::Is
   }
   const NestedAlignment nested(&parameters_, started);
   if (!nested.timeLeftOrNote("the other direction", result)) return;
+  const AttemptLabel label(&attempt_, "other direction");
   Associations swapped_associations;
   RegistrationResult swapped =
       alignSwapped(source, T_initial, associations ? &swapped_associations : nullptr);
+  traceAttempt(swapped, swapped.converged, started);
   if (swapped.converged) {
     *result = std::move(swapped);
     if (associations) *associations = std::move(swapped_associations);
@@ -256,20 +276,39 @@ void PdaRegistration::tryWiderSearch(const PointList& source, const Eigen::Isome
   const NestedAlignment nested(&parameters_, started);
   if (!nested.timeLeftOrNote("a wider search", result)) return;
   parameters_ = widerSearchParameters(parameters_);  // the user's, with what is left of the time
+  const AttemptLabel label(&attempt_, "wider search");
   Associations wide_associations;
   RegistrationResult wide =
       alignUnchecked(source, T_initial, associations ? &wide_associations : nullptr);
   wide.search_widened = true;
   const bool holds = widerSearchHolds(wide, user);
   const bool cut = wide.out_of_time;
+  traceAttempt(wide, holds, started);
   adoptNested(holds, &wide, &wide_associations, result, associations);
   nested.noteIfCut("a wider search", holds, cut, result);
+}
+
+void PdaRegistration::traceAttempt(const RegistrationResult& attempt, bool adopted,
+                                   std::chrono::steady_clock::time_point started) const {
+  if (!trace_.attempt) return;
+  AttemptRecord record;
+  record.attempt = attempt_;
+  record.converged = attempt.converged;
+  record.adopted = adopted;
+  record.reason = attempt.reason;
+  record.runs = attempt.runs;
+  record.sigma = attempt.sigma;
+  record.time_ms =
+      std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - started).count();
+  trace_.attempt(record);
 }
 
 RegistrationResult PdaRegistration::alignSwapped(const PointList& source,
                                                  const Eigen::Isometry3d& T_target_source_initial,
                                                  Associations* associations) {
   PdaRegistration swapped(parameters_);
+  swapped.trace_.run = trace_.run;  // its runs are this attempt's; align() notes the attempt
+  swapped.attempt_ = attempt_;
   RegistrationResult result;
   if (!swapped.setTarget(source)) {
     result.T_target_source = T_target_source_initial;

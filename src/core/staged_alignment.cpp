@@ -188,12 +188,28 @@ RegistrationResult PdaRegistration::alignUnchecked(const PointList& source_input
     const PoseStep* em_step_metric = stage == Stage::kApproach ? nullptr : &step_metric;
     const NormalLookup normals_at =
         stage == Stage::kRefine ? NormalLookup::kAtCandidate : NormalLookup::kAtPoint;
+    const int em_iterations_before = result.em_iterations;
     if (!runEm(active, *normal_map, normals_at, run_parameters, em_step_metric, &workspace_, &state,
                &em_settled, &result.em_iterations)) {
       result.reason = "M-step failed: the weighted correspondences do not constrain the pose";
       return result;
     }
     last_run_step = incrementBetween(T_run_start, state.T);
+    if (trace_.run) {
+      RunRecord record;
+      record.attempt = attempt_;
+      record.run = run;
+      record.stage = stage == Stage::kApproach ? "approach"
+                                               : (stage == Stage::kSettle ? "settle" : "refine");
+      record.points = active.size();
+      record.radius = radius;
+      record.sigma = std::sqrt(state.sigma_squared);
+      record.nu = state.nu;
+      record.step_translation = last_run_step.translation;
+      record.step_rotation = last_run_step.rotation;
+      record.em_iterations = result.em_iterations - em_iterations_before;
+      trace_.run(record);
+    }
     // A stage ends when a run moves less than its epsilons: 10 epsilons before the refine stage,
     // the epsilons themselves in it.
     const double stage_scale = stage == Stage::kRefine ? 1.0 : 10.0;

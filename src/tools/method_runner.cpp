@@ -14,7 +14,7 @@ bool isKnownMethod(const std::string& method) {
 
 MethodOutcome runMethod(const std::string& method, const PointList& target, const PointList& source,
                         const Eigen::Isometry3d& T_target_source_initial,
-                        const MethodSettings& settings) {
+                        const MethodSettings& settings, const AlignmentTrace& trace) {
   MethodOutcome outcome;
   outcome.method = method;
   BaselineMethod baseline;
@@ -31,6 +31,7 @@ MethodOutcome runMethod(const std::string& method, const PointList& target, cons
   outcome.pda_fields = true;
   const auto start = std::chrono::steady_clock::now();
   PdaRegistration registration(settings.pda);
+  registration.setTrace(trace);
   registration.setTarget(target);
   outcome.result = registration.align(source, T_target_source_initial);
   outcome.result.time_ms =

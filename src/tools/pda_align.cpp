@@ -19,6 +19,7 @@
 #include "pda_registration/tools/method_runner.hpp"
 #include "pda_registration/tools/settings_flags.hpp"
 #include "pda_registration/tools/statistics.hpp"
+#include "pda_registration/tools/trace_lines.hpp"
 
 using namespace pda_registration;
 
@@ -38,6 +39,8 @@ const char* kUsage =
     "  --compare M1,M2         also run these methods, interleaved with --method, and report\n"
     "                          median times and time ratios (e.g. --compare icp,gicp)\n"
     "  --repeat N              repetitions for --compare timing (3)\n"
+    "  --trace                 PDA: each run and attempt as a JSON line on stderr (stage,\n"
+    "                          radius, sigma, nu, step; adopted or why not); not with --compare\n"
     "  --help\n";
 
 int usageError(const std::string& message) { return reportError("pda_align", message); }
@@ -47,7 +50,8 @@ int usageError(const std::string& message) { return reportError("pda_align", mes
 int main(int argc, char** argv) {
   CommandLine cl =
       commandLineWithSettings({"target", "source", "initial", "perturb", "seed", "output",
-                               "aligned-cloud", "ground-truth", "method", "compare", "repeat"});
+                               "aligned-cloud", "ground-truth", "method", "compare", "repeat"},
+                              {"trace"});
   MethodSettings settings;
   const int exit_code = startRegistrationTool("pda_align", kUsage, argc, argv, &cl, &settings);
   if (exit_code >= 0) return exit_code;
@@ -63,6 +67,11 @@ int main(int argc, char** argv) {
   }
   int repeat = 3;
   if (!cl.integer("repeat", &repeat, 1, 1000)) return usageError(cl.error());
+  const bool traced = cl.has("trace");
+  if (traced && method != "pda") return usageError("--trace: only PDA's runs can be traced");
+  if (traced && !compared.empty()) {
+    return usageError("--trace: traces one alignment; it cannot be combined with --compare");
+  }
 
   std::string error;
   Eigen::Isometry3d initial = Eigen::Isometry3d::Identity();
@@ -100,7 +109,8 @@ int main(int argc, char** argv) {
   std::map<std::string, MethodOutcome> last;
   for (int round = 0; round < rounds; ++round) {
     for (const std::string& m : methods) {
-      last[m] = runMethod(m, target, source, initial, settings);
+      last[m] = runMethod(m, target, source, initial, settings,
+                          traced ? jsonLinesTrace(&std::cerr) : AlignmentTrace());
       times[m].push_back(last[m].result.time_ms);
     }
   }

@@ -12,7 +12,9 @@
 #include <Eigen/Geometry>
 #include <chrono>
 #include <memory>
+#include <utility>
 
+#include "pda_registration/core/alignment_trace.hpp"
 #include "pda_registration/core/associations.hpp"
 #include "pda_registration/core/point_list.hpp"
 #include "pda_registration/core/registration_parameters.hpp"
@@ -59,6 +61,10 @@ class PdaRegistration {
                            const Eigen::Isometry3d& T_target_source_initial,
                            Associations* associations = nullptr);
 
+  /// Receivers for every run and attempt of the next align() calls (alignment_trace.hpp); an
+  /// empty trace (the default) turns it off. The answers are the same either way.
+  void setTrace(AlignmentTrace trace) { trace_ = std::move(trace); }
+
  private:
   TargetIndexing indexing() const;
   /// `abandon_in`: a second start stops (not converged) once it enters the first's basin.
@@ -93,6 +99,9 @@ class PdaRegistration {
   RegistrationResult alignSwapped(const PointList& source,
                                   const Eigen::Isometry3d& T_target_source_initial,
                                   Associations* associations);
+  /// Tells the trace that the attempt named attempt_ has ended (`adopted`: as align()'s answer).
+  void traceAttempt(const RegistrationResult& attempt, bool adopted,
+                    std::chrono::steady_clock::time_point started) const;
 
   /// The subset voxel for `source` (as aligned; `budgeted`: thinned to max_source_points): its
   /// spacing, or the current voxel while that still serves; 0 for a source aligned whole.
@@ -103,6 +112,8 @@ class PdaRegistration {
   bool source_seen_ = false;   // target_subset: whether subset_voxel_ has been decided yet
   TargetMap target_map_;
   RegistrationWorkspace workspace_;  // scratch memory kept between alignments
+  AlignmentTrace trace_;
+  const char* attempt_ = "first";  // the attempt alignUnchecked() is running, for the trace
 };
 
 }  // namespace pda_registration

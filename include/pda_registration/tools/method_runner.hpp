@@ -6,6 +6,7 @@
 #include <Eigen/Geometry>
 #include <string>
 
+#include "pda_registration/core/alignment_trace.hpp"
 #include "pda_registration/core/point_list.hpp"
 #include "pda_registration/core/registration_parameters.hpp"
 #include "pda_registration/core/registration_result.hpp"
@@ -30,8 +31,9 @@ struct MethodOutcome {
   double fitness = 0.0;       ///< PCL fitness score (PCL methods only)
 };
 
+/// `trace` (PDA only): receives the alignment's runs and attempts (alignment_trace.hpp).
 MethodOutcome runMethod(const std::string& method, const PointList& target, const PointList& source,
                         const Eigen::Isometry3d& T_target_source_initial,
-                        const MethodSettings& settings);
+                        const MethodSettings& settings, const AlignmentTrace& trace = {});
 
 }  // namespace pda_registration

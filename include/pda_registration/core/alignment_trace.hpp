@@ -1,0 +1,48 @@
+#pragma once
+// What an alignment did, run by run and attempt by attempt, for a user who asks why it took 80
+// runs or why it answered what it did (`pda_align --trace`). One align() is one or more
+// attempts: the first, then, where its result calls for them, a second start, a local start, the
+// other direction and a wider search (pda_registration.hpp); each attempt is a sequence of runs
+// (approach, settle, refine: docs/algorithm.md). Reading the trace changes nothing: an alignment
+// traced answers exactly what it answers untraced.
+
+#include <cstddef>
+#include <functional>
+#include <string>
+
+namespace pda_registration {
+
+/// One run: the candidate sets recomputed, then EM on them.
+struct RunRecord {
+  const char* attempt = "";  ///< "first", "second start", "local start", "other direction", ...
+  int run = 0;               ///< 1-based within the attempt
+  const char* stage = "";    ///< "approach", "settle" or "refine"
+  size_t points = 0;         ///< source points aligned in this run (the approach: a subset)
+  double radius = 0.0;       ///< candidate search radius [length]
+  double sigma = 0.0;        ///< sigma after the run's EM [length]
+  double nu = 0.0;           ///< Student-t degrees of freedom after the run's EM
+  double step_translation = 0.0;  ///< how far the run moved the pose [length]
+  double step_rotation = 0.0;     ///< [rad]
+  int em_iterations = 0;          ///< this run's E/M iterations
+};
+
+/// One attempt, when it has ended: what it concluded and whether align() adopted it as its answer
+/// (a later attempt may still replace it).
+struct AttemptRecord {
+  const char* attempt = "";
+  bool converged = false;
+  bool adopted = false;
+  std::string reason;  ///< why it did not converge (empty when it did)
+  int runs = 0;
+  double sigma = 0.0;
+  double time_ms = 0.0;  ///< since align() began
+};
+
+/// Receivers, each optional; called on align()'s own thread, in order.
+struct AlignmentTrace {
+  std::function<void(const RunRecord&)> run;
+  std::function<void(const AttemptRecord&)> attempt;
+  bool on() const { return run || attempt; }
+};
+
+}  // namespace pda_registration
