@@ -21,7 +21,7 @@ AlignmentTrace jsonLinesTrace(std::ostream* out) {
     line.add("trace", "attempt").add("attempt", a.attempt).add("converged", a.converged);
     line.add("adopted", a.adopted).add("reason", a.reason).add("runs", a.runs);
     line.add("sigma", a.sigma).add("time_ms", a.time_ms);
-    *out << line.str() << std::endl;
+    *out << line.str() << '\n';
   };
   return trace;
 }

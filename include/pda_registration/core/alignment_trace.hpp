@@ -33,7 +33,7 @@ struct AttemptRecord {
   bool converged = false;
   bool adopted = false;
   std::string reason;  ///< why it did not converge (empty when it did)
-  int runs = 0;
+  int runs = 0;  ///< its runs as listed; a least-squares polish over a warp adds its own, unlisted
   double sigma = 0.0;
   double time_ms = 0.0;  ///< since align() began
 };
@@ -42,7 +42,6 @@ struct AttemptRecord {
 struct AlignmentTrace {
   std::function<void(const RunRecord&)> run;
   std::function<void(const AttemptRecord&)> attempt;
-  bool on() const { return run || attempt; }
 };
 
 }  // namespace pda_registration
