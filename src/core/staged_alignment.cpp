@@ -17,6 +17,7 @@
 #include "pda_registration/core/point_filter.hpp"
 #include "pda_registration/core/run_extrapolation.hpp"
 #include "pda_registration/core/run_rest.hpp"
+#include "pda_registration/core/run_tail.hpp"
 #include "pda_registration/core/source_budget.hpp"
 #include "pda_registration/core/warp_polish.hpp"
 
@@ -152,6 +153,7 @@ RegistrationResult PdaRegistration::alignUnchecked(const PointList& source_input
   const PoseStep step_metric = PoseStep::over(source);
   RunExtrapolation extrapolation(step_metric);
   RunRest rest(step_metric);
+  RunTail tail(step_metric);
   const auto outOfTime = [&] {
     return p.time_limit_ms > 0.0 &&
            std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - started)
@@ -211,10 +213,17 @@ RegistrationResult PdaRegistration::alignUnchecked(const PointList& source_input
       trace_.run(record);
     }
     // A stage ends when a run moves less than its epsilons: 10 epsilons before the refine stage,
-    // the epsilons themselves in it.
+    // the epsilons themselves in it. After the approach (which chooses the basin, from steps as
+    // wide as sigma) it also ends once the distance still to go is negligible against sigma
+    // (run_tail.hpp).
     const double stage_scale = stage == Stage::kRefine ? 1.0 : 10.0;
-    const bool stage_done = last_run_step.translation <= stage_scale * p.translation_epsilon &&
-                            last_run_step.rotation <= stage_scale * p.rotation_epsilon;
+    const double to_go = tail.record(T_run_start, state.T);
+    const bool tail_negligible =
+        stage != Stage::kApproach && p.sigma_mode == SigmaMode::kEstimated &&
+        to_go <= stage_scale * kNegligibleTailSigmas * std::sqrt(state.sigma_squared);
+    const bool steps_small = last_run_step.translation <= stage_scale * p.translation_epsilon &&
+                             last_run_step.rotation <= stage_scale * p.rotation_epsilon;
+    const bool stage_done = steps_small || tail_negligible;
     // The runs converge linearly, slowly on dense clouds: the next run starts at the steps' tail
     // (run_extrapolation.hpp), at most 2 sigma further, where the candidate sets are still
     // about the same (a longer jump traded lidar scans' reach for speed: car park from 10 deg,
@@ -226,8 +235,10 @@ RegistrationResult PdaRegistration::alignUnchecked(const PointList& source_input
     // settle and refine stages keep two.
     extrapolation.setAgreementsNeeded(stage == Stage::kApproach ? 2 : 1);
     if (!stage_done && p.max_runs > 1) {
+      const int jumps_before = extrapolation.extrapolations();
       state.T = extrapolation.next(T_run_start, state.T, stage_scale * p.translation_epsilon,
                                    kExtrapolationSigmas * std::sqrt(state.sigma_squared));
+      if (extrapolation.extrapolations() != jumps_before) tail.reset();  // not a run's own step
     }
     if (abandon_in && abandon_in->contains(state.T)) {
       result.reason = "second start: back in the first result's basin";
@@ -258,13 +269,14 @@ RegistrationResult PdaRegistration::alignUnchecked(const PointList& source_input
     if (stage != Stage::kRefine) {
       if (stage_done || cycling) {
         stage = stage == Stage::kApproach ? Stage::kSettle : Stage::kRefine;
-        rest.reset();  // both look back over this stage's steps only
+        rest.reset();  // all three look back over this stage's steps only
         extrapolation.reset();
+        tail.reset();
       }
       continue;  // convergence is only declared in the refine stage
     }
     // Converged: a run below the epsilons, or runs that cycle in place.
-    if (isSmall(last_run_step, p) || cycling) {
+    if (stage_done || cycling) {
       result.converged = true;
       break;
     }
