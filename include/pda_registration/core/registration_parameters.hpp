@@ -70,8 +70,10 @@ struct RegistrationParameters {
   /// none (the nodelet sets it for warm alignments: a running system's answer is worth little once
   /// the next scan is waiting).
   double time_limit_ms = 0.0;
-  double translation_epsilon = 1e-4;  ///< [length] converged when a step moves less than this
-  double rotation_epsilon = 1e-4;     ///< [rad]    ... and rotates less than this
+  /// [length] converged when a step moves less than this (or when the runs' tail is below 1 % of
+  /// sigma: run_tail.hpp)
+  double translation_epsilon = 1e-4;
+  double rotation_epsilon = 1e-4;  ///< [rad] ... and rotates less than this
   // --- M-step --------------------------------------------------------------------------------
   MStepSolver solver = MStepSolver::kGaussNewton;
   int solver_max_iterations = 1;  ///< GN / LM iterations per M-step (not closed form)
