@@ -23,4 +23,12 @@ PoseStep::Vector PoseStep::between(const Eigen::Isometry3d& before,
   return step;
 }
 
+StepSuccession succession(const PoseStep::Vector& previous, const PoseStep::Vector& step) {
+  const double size = step.norm(), previous_size = previous.norm();
+  StepSuccession s;
+  s.cosine = step.dot(previous) / (size * previous_size);
+  s.ratio = size / previous_size;
+  return s;
+}
+
 }  // namespace pda_registration

@@ -5,9 +5,8 @@
 
 namespace pda_registration {
 namespace {
-constexpr double kSameDirection = 0.9;  // cosine between successive steps
-constexpr double kMaxRatio = 0.95;      // beyond: too slow a shrink to trust its tail
-constexpr double kMaxFactor = 8.0;      // the extrapolation never exceeds 8 of the last steps
+constexpr double kMaxRatio = 0.95;  // beyond: too slow a shrink to trust its tail
+constexpr double kMaxFactor = 8.0;  // the extrapolation never exceeds 8 of the last steps
 }  // namespace
 
 Eigen::Isometry3d RunExtrapolation::next(const Eigen::Isometry3d& before,
@@ -25,10 +24,10 @@ Eigen::Isometry3d RunExtrapolation::next(const Eigen::Isometry3d& before,
     have_previous_ = true;
     return after;
   }
-  const double cosine = step.dot(previous_) / (size * previous_.norm());
-  const double ratio = size / previous_.norm();
+  const StepSuccession follows = succession(previous_, step);
+  const double ratio = follows.ratio;
   previous_ = step;
-  if (cosine < kSameDirection || ratio >= kMaxRatio) {
+  if (!follows.sameDirection() || ratio >= kMaxRatio) {
     agreeing_ = 0;
     return after;
   }

@@ -29,4 +29,16 @@ class PoseStep {
   double length_;
 };
 
+/// How a step follows the one before (both non-zero, in one PoseStep metric): the cosine between
+/// them and the ratio of their lengths. Runs near a rest converge linearly: successive steps
+/// point the same way and shrink (the extrapolation and the tail read them so).
+struct StepSuccession {
+  /// Steps at least this close in direction (cosine) are taken as one linear sequence.
+  static constexpr double kSameDirection = 0.9;
+  double cosine = 0.0;
+  double ratio = 0.0;  ///< |step| / |previous|
+  bool sameDirection() const { return cosine >= kSameDirection; }
+};
+StepSuccession succession(const PoseStep::Vector& previous, const PoseStep::Vector& step);
+
 }  // namespace pda_registration
