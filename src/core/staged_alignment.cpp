@@ -275,7 +275,7 @@ RegistrationResult PdaRegistration::alignUnchecked(const PointList& source_input
       }
       continue;  // convergence is only declared in the refine stage
     }
-    // Converged: a run below the epsilons, or runs that cycle in place.
+    // Converged: a run below the epsilons, a negligible tail, or runs that cycle in place.
     if (stage_done || cycling) {
       result.converged = true;
       break;
