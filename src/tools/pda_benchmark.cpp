@@ -1,10 +1,13 @@
 // pda_benchmark: accuracy and speed of PDA against PCL's ICP, GICP and NDT on every case of a
 // data directory, from fixed-seed perturbations of the ground truth. Prints a markdown table
-// (median eq. 22 error, success rate, median time, time ratio to ICP) and can write a CSV with
-// every trial. Exit 2 on bad arguments or unreadable data.
+// (median eq. 22 error, success rate, median time, time ratio to ICP), then how PDA's own verdict
+// and covariance read its misses, and can write a CSV with every trial. Exit 2 on bad arguments or
+// unreadable data.
 
 #include <algorithm>
+#include <cmath>
 #include <fstream>
+#include <limits>
 #include <iomanip>
 #include <iostream>
 #include <map>
@@ -14,6 +17,7 @@
 #include "pda_registration/core/error_metrics.hpp"
 #include "pda_registration/core/perturbation.hpp"
 #include "pda_registration/core/point_filter.hpp"
+#include "pda_registration/core/pose_covariance.hpp"
 #include "pda_registration/tools/case_folder.hpp"
 #include "pda_registration/tools/command_line.hpp"
 #include "pda_registration/tools/method_runner.hpp"
@@ -52,9 +56,38 @@ struct Trial {
   int seed;
   double error, time_ms;
   bool converged;
+  /// PDA's covariance: the translation error it expects (1 sigma) [m]; NaN for PCL's methods.
+  double expected_error;
 };
 
 int fail(const std::string& message) { return reportError("pda_benchmark", message); }
+
+// What a stack that trusts PDA's answer sees of its misses: how many of the trials `threshold` or
+// more off came back converged, and how many of those the covariance itself expected to be that
+// far off (what the nodelet's max_expected_error gate can reject), against how many good answers
+// such a gate would also lose.
+void printMissesAsPdaReadsThem(const std::vector<Trial>& all, double threshold) {
+  int trials = 0, misses = 0, converged_misses = 0, flagged_misses = 0, converged_good = 0,
+      flagged_good = 0;
+  for (const Trial& t : all) {
+    if (t.method != "pda" || !std::isfinite(t.expected_error)) continue;
+    ++trials;
+    const bool miss = !(t.error < threshold);
+    const bool flagged = !(t.expected_error < threshold);
+    misses += miss;
+    if (!t.converged) continue;
+    converged_misses += miss;
+    flagged_misses += miss && flagged;
+    converged_good += !miss;
+    flagged_good += !miss && flagged;
+  }
+  if (trials == 0) return;
+  std::cout << "\nPDA: " << misses << " of " << trials << " trials " << threshold
+            << " m or more off, " << converged_misses << " of them reported converged; its covariance "
+            << "expected " << threshold << " m or more (1 sigma) on " << flagged_misses << " of those "
+            << converged_misses << " and on " << flagged_good << " of the " << converged_good
+            << " converged trials within " << threshold << " m.\n";
+}
 
 }  // namespace
 
@@ -131,9 +164,12 @@ int main(int argc, char** argv) {
           }
           const MethodOutcome o =
               runMethod(method == "pda_single" ? "pda" : method, target, source, initial, s);
+          const double expected = o.pda_fields
+                                      ? expectedError(o.result.covariance).translation
+                                      : std::numeric_limits<double>::quiet_NaN();
           all.push_back({name, method, level, seed,
                          poseError(source, o.result.T_target_source, truth).mean_distance,
-                         o.result.time_ms, o.result.converged});
+                         o.result.time_ms, o.result.converged, expected});
           std::cerr << "\r" << name << " " << level.degrees << "deg/" << level.metres << "m trial "
                     << t + 1 << "/" << trials << " " << method << "          " << std::flush;
         }
@@ -144,10 +180,12 @@ int main(int argc, char** argv) {
 
   if (cl.has("csv")) {
     std::ofstream csv(cl.text("csv"));
-    csv << "case,level_deg,level_m,seed,method,eq22_error_m,time_ms,converged\n";
+    csv << "case,level_deg,level_m,seed,method,eq22_error_m,time_ms,converged,expected_error_m\n";
     for (const Trial& t : all) {
       csv << t.case_name << ',' << t.level.degrees << ',' << t.level.metres << ',' << t.seed << ','
-          << t.method << ',' << t.error << ',' << t.time_ms << ',' << t.converged << '\n';
+          << t.method << ',' << t.error << ',' << t.time_ms << ',' << t.converged << ',';
+      if (std::isfinite(t.expected_error)) csv << t.expected_error;
+      csv << '\n';
     }
     if (!csv) return fail("--csv: cannot write '" + cl.text("csv") + "'");
   }
@@ -182,5 +220,6 @@ int main(int argc, char** argv) {
       }
     }
   }
+  printMissesAsPdaReadsThem(all, success_threshold);
   return 0;
 }
