@@ -43,8 +43,8 @@ std::string missesLine(const std::string& threshold, int misses, int converged_m
   line << "PDA: " << misses << " of 2 trials " << threshold << " m or more off, "
        << converged_misses << " of them reported converged; its covariance expected " << threshold
        << " m or more (1 sigma) on " << flagged_misses << " of those " << converged_misses
-       << " and on " << flagged_good << " of the " << converged_good
-       << " converged trials within " << threshold << " m.";
+       << " and on " << flagged_good << " of the " << converged_good << " converged trials within "
+       << threshold << " m.";
   return line.str();
 }
 
@@ -57,7 +57,8 @@ TEST(PdaBenchmark, WritesEveryTrialWithPdaExpectedError) {
   std::stringstream lines(readFile(csv));
   std::string line;
   ASSERT_TRUE(std::getline(lines, line));
-  EXPECT_EQ(line, "case,level_deg,level_m,seed,method,eq22_error_m,time_ms,converged,expected_error_m");
+  EXPECT_EQ(line,
+            "case,level_deg,level_m,seed,method,eq22_error_m,time_ms,converged,expected_error_m");
   int pda_rows = 0, icp_rows = 0;
   while (std::getline(lines, line)) {
     const std::vector<std::string> cells = csvCells(line);

@@ -7,9 +7,9 @@
 #include <algorithm>
 #include <cmath>
 #include <fstream>
-#include <limits>
 #include <iomanip>
 #include <iostream>
+#include <limits>
 #include <map>
 #include <sstream>
 #include <vector>
@@ -83,9 +83,10 @@ void printMissesAsPdaReadsThem(const std::vector<Trial>& all, double threshold) 
   }
   if (trials == 0) return;
   std::cout << "\nPDA: " << misses << " of " << trials << " trials " << threshold
-            << " m or more off, " << converged_misses << " of them reported converged; its covariance "
-            << "expected " << threshold << " m or more (1 sigma) on " << flagged_misses << " of those "
-            << converged_misses << " and on " << flagged_good << " of the " << converged_good
+            << " m or more off, " << converged_misses
+            << " of them reported converged; its covariance expected " << threshold
+            << " m or more (1 sigma) on " << flagged_misses << " of those " << converged_misses
+            << " and on " << flagged_good << " of the " << converged_good
             << " converged trials within " << threshold << " m.\n";
 }
 
@@ -164,9 +165,8 @@ int main(int argc, char** argv) {
           }
           const MethodOutcome o =
               runMethod(method == "pda_single" ? "pda" : method, target, source, initial, s);
-          const double expected = o.pda_fields
-                                      ? expectedError(o.result.covariance).translation
-                                      : std::numeric_limits<double>::quiet_NaN();
+          const double expected = o.pda_fields ? expectedError(o.result.covariance).translation
+                                               : std::numeric_limits<double>::quiet_NaN();
           all.push_back({name, method, level, seed,
                          poseError(source, o.result.T_target_source, truth).mean_distance,
                          o.result.time_ms, o.result.converged, expected});
