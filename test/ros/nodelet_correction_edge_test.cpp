@@ -4,7 +4,7 @@
 // with the latest odometry would pin the sensor to where it was when the cloud was taken.
 #include <gtest/gtest.h>
 #include <tf2_eigen/tf2_eigen.h>
-#include <tf2_ros/transform_broadcaster.h>
+#include <tf2_msgs/TFMessage.h>
 
 #include <atomic>
 #include <thread>
@@ -41,17 +41,27 @@ TEST(NodeletCorrectionEdge, HoldsTheCorrectionWhileOdometryMoves) {
       Eigen::Translation3d(1.0, -2.0, 0.0) * Eigen::AngleAxisd(0.3, Eigen::Vector3d::UnitZ());
   ASSERT_TRUE(harness.publishSeed(T_map_dense, "map", "dense_map"));
 
+  // Odometry on /tf from a publisher that both listeners (the node's and this test's) have
+  // connected to first: a new publisher's messages are lost until a subscriber connects, and
+  // under load that took longer than the 0.3 s before the cloud's stamp, so the node's buffer
+  // had no odometry at the stamp and composed the edge with the latest (0.22 m off).
+  ros::NodeHandle node;
+  ros::Publisher tf_publisher = node.advertise<tf2_msgs::TFMessage>("/tf", 100);
+  ASSERT_TRUE(harness.waitFor([&] { return tf_publisher.getNumSubscribers() >= 2; }, 20.0))
+      << "the tf listeners did not connect to the odometry publisher within 20 s ("
+      << tf_publisher.getNumSubscribers() << " connected)";
   const ros::Time start = ros::Time::now();
   std::atomic<bool> driving{true};
   std::thread odometry([&] {
-    tf2_ros::TransformBroadcaster broadcaster;
     while (driving) {
       const ros::Time now = ros::Time::now();
       geometry_msgs::TransformStamped t = tf2::eigenToTransform(odometryAt(now, start));
       t.header.stamp = now;
       t.header.frame_id = "odom";
       t.child_frame_id = "sparse_map";
-      broadcaster.sendTransform(t);
+      tf2_msgs::TFMessage message;
+      message.transforms.push_back(t);
+      tf_publisher.publish(message);
       ros::WallDuration(0.02).sleep();
     }
   });
