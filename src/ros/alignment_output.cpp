@@ -12,6 +12,21 @@ Eigen::Matrix<double, 6, 6> AlignmentJob::publishedCovariance(
              : invertedPoseCovariance(result.T_target_source, result.covariance);
 }
 
+void AlignmentJob::noteEdgeStamp(const TfEdge& edge) {
+  bool was_at_stamp = true;
+  c_.status->update([&](AlignmentStatusValues& s) {
+    was_at_stamp = s.last_edge_at_stamp;
+    s.last_edge_at_stamp = edge.at_stamp;
+    if (!edge.at_stamp) ++s.edges_from_latest_tf;
+  });
+  if (edge.at_stamp == was_at_stamp) return;
+  c_.log.info(edge.at_stamp ? "tf edge " + edge.parent + " -> " + edge.child +
+                                  ": composed at the clouds' stamps again"
+                            : "tf edge " + edge.parent + " -> " + edge.child +
+                                  ": tf has nothing at the cloud's stamp, composing with the "
+                                  "latest tf (off by what moved since)");
+}
+
 void AlignmentJob::publish(const Accepted& a) {
   const NodeSettings& settings = *c_.settings;
   const RegistrationResult& result = *a.result;
@@ -43,6 +58,7 @@ void AlignmentJob::publish(const Accepted& a) {
                       settings.tf_parent_frame, settings.tf_child_frame, stamp,
                       ros::Duration(settings.tf_timeout), &edge, &error)) {
     c_.edges->sendFresh(edge, stamp);
+    noteEdgeStamp(edge);
   } else {
     c_.log.problem(
         "tf edge",

@@ -65,6 +65,7 @@ void AlignmentStatus::fill(diagnostic_updater::DiagnosticStatusWrapper& status,
   status.add("alignment time [ms]", r.time_ms);
   status.add("latency [ms]", s.last_latency_ms);
   status.add("seed source", toString(s.last_seed));
+  status.add("tf edges from the latest tf (none at the stamp)", s.edges_from_latest_tf);
   status.add("warm start", s.warm_start);
   status.add("warm starts retried from the seed", s.warm_start_retries);
   status.add("warm alignments out of time", s.out_of_time);

@@ -17,7 +17,8 @@ bool expressOnTfEdge(const tf2_ros::Buffer& buffer, const Eigen::Isometry3d& T_d
   edge->parent = parent_setting.empty() ? dense_frame : parent_setting;
   edge->child = edgeChildFrame(sparse_frame, child_setting);
   edge->T_parent_child = T_dense_sparse;
-  bool at_stamp = false;
+  edge->at_stamp = true;
+  bool at_stamp = true;
   if (edge->parent != dense_frame) {
     Eigen::Isometry3d T_parent_dense;
     if (!lookupAtStampOrLatest(buffer, edge->parent, dense_frame, stamp, timeout, &T_parent_dense,
@@ -25,6 +26,7 @@ bool expressOnTfEdge(const tf2_ros::Buffer& buffer, const Eigen::Isometry3d& T_d
       return false;
     }
     edge->T_parent_child = T_parent_dense * edge->T_parent_child;
+    edge->at_stamp = edge->at_stamp && at_stamp;
   }
   if (edge->child != sparse_frame && edge->child != aligned_sparse) {
     // At the cloud's stamp: odometry's sparse <- child then, not now (the robot has moved since).
@@ -34,6 +36,7 @@ bool expressOnTfEdge(const tf2_ros::Buffer& buffer, const Eigen::Isometry3d& T_d
       return false;
     }
     edge->T_parent_child = edge->T_parent_child * T_sparse_child;
+    edge->at_stamp = edge->at_stamp && at_stamp;
   }
   return true;
 }

@@ -87,6 +87,9 @@ TEST(NodeletCorrectionEdge, HoldsTheCorrectionWhileOdometryMoves) {
   const Eigen::Isometry3d first = harness.lookup("map", "odom", 5.0);
   EXPECT_LT(translationGap(first, expected), 1e-3);
   EXPECT_LT(Eigen::AngleAxisd(first.linear().transpose() * expected.linear()).angle(), 1e-4);
+  // The node says whether odometry at the stamp went into the edge, or the latest stood in.
+  ASSERT_TRUE(harness.waitForFreshDiagnostics(5.0)) << "no diagnostics within 5 s";
+  EXPECT_EQ(harness.diagnosticValue("tf edges from the latest tf (none at the stamp)"), "0");
 
   // Two seconds (a metre) later, the re-broadcast edge is still the same correction ...
   ros::WallDuration(2.0).sleep();

@@ -20,6 +20,7 @@
 #include "pda_registration/ros/node_settings.hpp"
 #include "pda_registration/ros/rate_budget.hpp"
 #include "pda_registration/ros/seed_lookup.hpp"
+#include "pda_registration/ros/tf_edge.hpp"
 
 namespace pda_registration {
 
@@ -62,6 +63,8 @@ class AlignmentJob {
   /// The result's covariance as ~pose carries it: in the dense map's frame, whichever cloud
   /// was the target.
   Eigen::Matrix<double, 6, 6> publishedCovariance(const RegistrationResult& result) const;
+  /// Counts an edge composed with the latest tf, and logs when that starts or stops.
+  void noteEdgeStamp(const TfEdge& edge);
 
   /// Whether this alignment starts from the seed corrected by the last accepted correction
   /// (core/warm_start.hpp): kWarmStartUsed, or why not.

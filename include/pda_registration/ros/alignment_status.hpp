@@ -25,6 +25,9 @@ struct AlignmentStatusValues {
   RegistrationResult last_result;
   ExpectedError expected_error;  ///< of the last result, as published (dense frame)
   SeedSource last_seed = SeedSource::kNone;
+  // Tf edges composed with the latest tf because tf had nothing at the cloud's stamp (TfEdge).
+  size_t edges_from_latest_tf = 0;
+  bool last_edge_at_stamp = true;
   std::string last_problem;  // the latest rejection or input error, for the WARN status
   double last_latency_ms = 0.0;
   ros::Time last_problem_time;

@@ -15,6 +15,9 @@ namespace pda_registration {
 struct TfEdge {
   std::string parent, child;
   Eigen::Isometry3d T_parent_child = Eigen::Isometry3d::Identity();
+  /// False when a transform composed into the edge was not in tf at the cloud's stamp and the
+  /// latest one stood in: the edge is then off by whatever moved between the two.
+  bool at_stamp = true;
 };
 
 /// The child frame of the node's edge: `child_setting`, or "<sparse frame>_aligned" when empty.
