@@ -8,6 +8,8 @@
 #include <cmath>
 #include <limits>
 #include <random>
+#include <string>
+#include <vector>
 
 #include "pda_registration/core/error_metrics.hpp"
 #include "pda_registration/core/pda_registration.hpp"
@@ -66,6 +68,45 @@ TEST(HonestVerdict, ResidualsAsWideAsTheSearchAreUnresolved) {
   EXPECT_FALSE(result.converged);
   EXPECT_NE(result.reason.find("unresolved"), std::string::npos) << result.reason;
   EXPECT_GE(6.0 * result.sigma, RegistrationParameters().radius);
+}
+
+// RGB-D fragments that share a third of the scene (layout 5, each 40 % of the walkway), from 2
+// deg: the two thirds without a counterpart hold sigma at 0.14-0.18 m, and once a refine run's
+// residuals span the search the attempt stops there, "unresolved" (it wandered 12 more runs at
+// that sigma into the same verdict); the local start then finds the truth.
+TEST(HonestVerdict, ARefineRunWhoseResidualsSpanTheSearchEndsItsAttempt) {
+  MapSimulationOptions options = rgbdFragmentOptions(5);
+  options.fragment_length = 0.4;
+  const SimulatedMaps maps = simulateMaps(options);
+  const RegistrationParameters p;
+  PdaRegistration registration(p);
+  std::vector<RunRecord> first_runs;
+  std::vector<AttemptRecord> attempts;
+  AlignmentTrace trace;
+  trace.run = [&first_runs](const RunRecord& r) {
+    if (std::string(r.attempt) == "first") first_runs.push_back(r);
+  };
+  trace.attempt = [&attempts](const AttemptRecord& a) { attempts.push_back(a); };
+  registration.setTrace(trace);
+  ASSERT_TRUE(registration.setTarget(maps.dense));
+  const RegistrationResult result =
+      registration.align(maps.sparse, maps.T_target_source * randomPerturbation(2.0, 0.1, 1));
+
+  ASSERT_FALSE(attempts.empty());
+  EXPECT_EQ(std::string(attempts.front().attempt), "first");
+  EXPECT_NE(attempts.front().reason.find("unresolved"), std::string::npos)
+      << attempts.front().reason;
+  ASSERT_FALSE(first_runs.empty());
+  const auto spans = [&p](const RunRecord& r) {
+    return std::string(r.stage) == "refine" && 6.0 * r.sigma >= p.radius;
+  };
+  EXPECT_TRUE(spans(first_runs.back()))
+      << "the first attempt's last run, sigma " << first_runs.back().sigma;
+  EXPECT_EQ(std::count_if(first_runs.begin(), first_runs.end(), spans), 1);
+  ASSERT_TRUE(result.converged) << result.reason;
+  EXPECT_TRUE(result.local_start);
+  EXPECT_LT(poseError(maps.sparse, result.T_target_source, maps.T_target_source).mean_distance,
+            0.02);
 }
 
 // Two hand-held RGB-D fragments of one office, overlapping on two fifths of the loop, both dense

@@ -224,6 +224,16 @@ RegistrationResult PdaRegistration::alignUnchecked(const PointList& source_input
     const bool steps_small = last_run_step.translation <= stage_scale * p.translation_epsilon &&
                              last_run_step.rotation <= stage_scale * p.rotation_epsilon;
     const bool stage_done = steps_small || tail_negligible;
+    // A refine run whose residuals span the search has lost what makes it a refine run: its
+    // radius, 6 sigma, is back at the whole search, so it is not at a fit (the "unresolved"
+    // verdict) and stops there, as an approach at rest does below. On RGB-D fragments that share
+    // a third of the scene the refine runs wandered so at sigma 0.16-0.18 m for 12-30 more runs,
+    // a third of the failing attempt's work, into the same verdict.
+    if (stage == Stage::kRefine && p.max_runs > 1 &&
+        residualsSpanTheSearch(p, std::sqrt(state.sigma_squared))) {
+      result.converged = true;  // judgeConvergence says what it is
+      break;
+    }
     // The runs converge linearly, slowly on dense clouds: the next run starts at the steps' tail
     // (run_extrapolation.hpp), at most 2 sigma further, where the candidate sets are still
     // about the same (a longer jump traded lidar scans' reach for speed: car park from 10 deg,
