@@ -23,11 +23,17 @@ constexpr size_t kMinProbePoints = 32;
 
 // The most prominent peak beyond the estimate's on one side (`side` runs outward from the
 // estimate, `own` the estimate's peak count), which ends at the first count below half of it: at
-// each shift beyond, its rise above the deepest dip between it and the estimate (the saddle),
-// and the estimate's own rise above that same dip (prominence, not height: see the header).
+// each shift beyond, its rise above its key col and the estimate's own rise above that same col
+// (prominence, not height: see the header). The col is the higher of the peak's two dips: the
+// deepest count between it and the estimate (the saddle), and the deepest beyond it up to the
+// next higher count or the probe's end. A count that only climbs to the end of the reach, or a
+// plateau of clutter that fits at every shift, has no dip beyond it and is no peak: on RGB-D
+// fragments that share a third of the scene the probe's counts rose from 15 beside the estimate's
+// 73 to 53 at the reach, and against the saddle alone that read as a second pose (sigma 0.58 m
+// against a 5-mm error).
 struct SidePeak {
-  double rise = 0.0;      ///< above the saddle
-  double own_rise = 0.0;  ///< the estimate's, above the same saddle
+  double rise = 0.0;      ///< above the col
+  double own_rise = 0.0;  ///< the estimate's, above the same col
   size_t step = 0;
   double relative() const { return own_rise > 0.0 ? rise / own_rise : 0.0; }
 };
@@ -40,8 +46,13 @@ SidePeak mostProminentBeyond(const std::vector<size_t>& side, size_t own) {
     // Within the estimate's own peak a shallow dip and its rise are the count's noise.
     left_own_peak = left_own_peak || 2 * side[k] < own;
     if (!left_own_peak) continue;
-    const SidePeak here{static_cast<double>(side[k] - saddle),
-                        static_cast<double>(own) - static_cast<double>(saddle), k};
+    size_t beyond = side[k];
+    for (size_t m = k + 1; m < side.size() && side[m] <= side[k]; ++m) {
+      beyond = std::min(beyond, side[m]);
+    }
+    const size_t col = std::max(saddle, beyond);
+    const SidePeak here{static_cast<double>(side[k] - col),
+                        static_cast<double>(own) - static_cast<double>(col), k};
     if (here.relative() > best.relative()) best = here;
   }
   return best;

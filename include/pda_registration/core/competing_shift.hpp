@@ -16,10 +16,12 @@
 // 87 fit at the truth against 298 at the slide and about 50 at most shifts; every point, 155
 // against 217).
 // A peak beyond the estimate's own (which ends at the first count below half of its height) that
-// rises above the deepest dip between them by at least half as much as the estimate's peak does
-// is a competing pose the data do not rule out (prominence, not height: a cluttered room fits
-// 40-50 % of the estimate's count at many shifts, by points that land near some surface by
-// chance, and the dip measures that background where the peaks are).
+// rises above its col by at least half as much as the estimate's peak does is a competing pose
+// the data do not rule out (prominence, not height: a cluttered room fits 40-50 % of the
+// estimate's count at many shifts, by points that land near some surface by chance, and the dips
+// measure that background where the peaks are). The col is the higher of the deepest dip between
+// the two peaks and the deepest beyond the competitor: a peak falls off on both sides, a count
+// that climbs to the end of the reach or stays on a plateau of clutter does not.
 // The estimate won it by the annealing's path and the weights' choice of which points to believe.
 // The covariance then holds the competitor's share p of the two rises times its squared distance
 // along u (the mean squared error about the estimate if the competitor were the truth with
