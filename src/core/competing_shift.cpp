@@ -26,11 +26,11 @@ constexpr size_t kMinProbePoints = 32;
 // each shift beyond, its rise above its key col and the estimate's own rise above that same col
 // (prominence, not height: see the header). The col is the higher of the peak's two dips: the
 // deepest count between it and the estimate (the saddle), and the deepest beyond it up to the
-// next higher count or the probe's end. A count that only climbs to the end of the reach, or a
-// plateau of clutter that fits at every shift, has no dip beyond it and is no peak: on RGB-D
-// fragments that share a third of the scene the probe's counts rose from 15 beside the estimate's
-// 73 to 53 at the reach, and against the saddle alone that read as a second pose (sigma 0.58 m
-// against a 5-mm error).
+// next higher count or the probe's end (unless that stands as high as the estimate's own peak).
+// A count that only climbs to the end of the reach, or a plateau of clutter that fits at every
+// shift, has no dip beyond it and is no peak: on RGB-D fragments that share a third of the scene
+// the probe's counts rose from 15 beside the estimate's 73 to 53 at 0.92 m, and against the
+// saddle alone that read as a second pose (sigma 0.58 m against a 7-mm error).
 struct SidePeak {
   double rise = 0.0;      ///< above the col
   double own_rise = 0.0;  ///< the estimate's, above the same col
@@ -50,7 +50,10 @@ SidePeak mostProminentBeyond(const std::vector<size_t>& side, size_t own) {
     for (size_t m = k + 1; m < side.size() && side[m] <= side[k]; ++m) {
       beyond = std::min(beyond, side[m]);
     }
-    const size_t col = std::max(saddle, beyond);
+    // Where even the dip beyond stands as high as the estimate's peak, the shifts out there fit
+    // better throughout and the estimate is no peak above them: the dip between the two decides.
+    const size_t higher_col = std::max(saddle, beyond);
+    const size_t col = higher_col < own ? higher_col : saddle;
     const SidePeak here{static_cast<double>(side[k] - col),
                         static_cast<double>(own) - static_cast<double>(col), k};
     if (here.relative() > best.relative()) best = here;
