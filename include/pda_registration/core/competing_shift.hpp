@@ -21,7 +21,8 @@
 // estimate's count at many shifts, by points that land near some surface by chance, and the dips
 // measure that background where the peaks are). The col is the higher of the deepest dip between
 // the two peaks and the deepest beyond the competitor: a peak falls off on both sides, a count
-// that climbs to the end of the reach or stays on a plateau of clutter does not.
+// that climbs to the end of the reach or stays on a plateau of clutter does not. Where even the
+// dip beyond stands as high as the estimate's peak, the dip between the two decides alone.
 // The estimate won it by the annealing's path and the weights' choice of which points to believe.
 // The covariance then holds the competitor's share p of the two rises times its squared distance
 // along u (the mean squared error about the estimate if the competitor were the truth with
