@@ -229,14 +229,23 @@ TEST(SecondStart, TheFirstBasinHoldsPosesThatMoveThePointsByLessThanTheRadiusInR
 }
 
 TEST(SecondStart, ReplacesTheFirstOnlyWhenConvergedAndBetterSupported) {
-  RegistrationResult first, second;
-  first.converged = second.converged = true;
-  first.support_fraction = 0.51;
-  second.support_fraction = 0.63;
-  EXPECT_TRUE(secondStartIsBetter(first, second));
-  EXPECT_FALSE(secondStartIsBetter(second, first));
+  RegistrationResult second;
+  second.converged = true;
+  EXPECT_TRUE(secondStartIsBetter(second, 0.63, 0.51));
+  EXPECT_FALSE(secondStartIsBetter(second, 0.51, 0.63));
+  EXPECT_FALSE(secondStartIsBetter(second, 0.51, 0.51));
+  second.out_of_time = true;
+  EXPECT_FALSE(secondStartIsBetter(second, 0.63, 0.51));
+  second.out_of_time = false;
   second.converged = false;
-  EXPECT_FALSE(secondStartIsBetter(first, second));
+  EXPECT_FALSE(secondStartIsBetter(second, 0.63, 0.51));
+}
+
+// Both supports are measured with the tighter of the two results' 3 sigma, whichever is first.
+TEST(SecondStart, MeasuresBothSupportsWithTheTighterYardstick) {
+  const RegistrationParameters p;
+  EXPECT_DOUBLE_EQ(commonYardstick(p, 0.038, 0.018), p.inlier_sigmas * 0.018);
+  EXPECT_DOUBLE_EQ(commonYardstick(p, 0.018, 0.038), p.inlier_sigmas * 0.018);
 }
 
 // Only a result that came to rest with residuals as wide as its search (6 sigma >= radius) is

@@ -62,3 +62,8 @@ target_link_libraries(normal_lookup_test pda_simulated_cases gtest_main)
 catkin_add_gtest(competing_shift_test competing_shift_test.cpp)
 target_compile_options(competing_shift_test PRIVATE ${PDA_WARNINGS})
 target_link_libraries(competing_shift_test pda_simulated_cases gtest_main)
+
+# The second start as align() runs it: questioned at the first attempt's nu floor.
+catkin_add_gtest(second_start_test second_start_test.cpp)
+target_compile_options(second_start_test PRIVATE ${PDA_WARNINGS})
+target_link_libraries(second_start_test pda_simulated_cases gtest_main)

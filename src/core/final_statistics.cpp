@@ -65,6 +65,26 @@ void fillInlierStatistics(const PointList& source, const CandidateSets& candidat
 
 }  // namespace
 
+double supportFractionAt(const TargetIndex& index, const PointList& source,
+                         const Eigen::Isometry3d& T, double inlier_distance, double overlap_radius,
+                         int threads) {
+  size_t overlap = 0;
+  size_t inliers = 0;
+#pragma omp parallel for schedule(dynamic, 256) reduction(+ : overlap, inliers) \
+    num_threads(std::max(threads, 1))
+  for (long long j = 0; j < static_cast<long long>(source.size()); ++j) {
+    size_t nearest = 0;
+    double squared_distance = 0.0;
+    if (index.nearestWithinRadius(T * source[j], 1, overlap_radius, &nearest, &squared_distance) ==
+        0) {
+      continue;
+    }
+    ++overlap;
+    if (squared_distance < inlier_distance * inlier_distance) ++inliers;
+  }
+  return overlap == 0 ? 0.0 : static_cast<double>(inliers) / static_cast<double>(overlap);
+}
+
 // Covariance, inlier statistics and the degeneracy check at the final estimate.
 void fillFinalStatistics(const PointList& source, const TargetIndex& index,
                          const SurfaceNormalMap& normal_map, const RegistrationParameters& p,

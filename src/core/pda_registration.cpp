@@ -7,98 +7,21 @@
 #include <chrono>
 #include <cmath>
 #include <exception>
+#include <functional>
 #include <sstream>
 #include <string>
 #include <utility>
 
 #include "pda_registration/core/alignment_direction.hpp"
+#include "pda_registration/core/em_run.hpp"
 #include "pda_registration/core/local_start.hpp"
+#include "pda_registration/core/nested_alignment.hpp"
 #include "pda_registration/core/pose_covariance.hpp"
 #include "pda_registration/core/representative_subset.hpp"
 #include "pda_registration/core/second_start.hpp"
 #include "pda_registration/core/wider_search.hpp"
 
 namespace pda_registration {
-namespace {
-
-// An alignment that align() runs after the first one (a second start, a wider search): it gets
-// what is left of the user's time limit, and the user's parameters come back however it ends
-// (align() catches what alignUnchecked throws).
-class NestedAlignment {
- public:
-  NestedAlignment(RegistrationParameters* live, std::chrono::steady_clock::time_point started)
-      : live_(live), user_(*live) {
-    if (!(user_.time_limit_ms > 0.0)) return;  // no limit
-    live_->time_limit_ms = user_.time_limit_ms - std::chrono::duration<double, std::milli>(
-                                                     std::chrono::steady_clock::now() - started)
-                                                     .count();
-    time_left_ = live_->time_limit_ms > 0.0;
-  }
-  NestedAlignment(const NestedAlignment&) = delete;
-  NestedAlignment& operator=(const NestedAlignment&) = delete;
-  ~NestedAlignment() { *live_ = user_; }
-  /// False when the user's time limit is already spent: the nested alignment is not run.
-  bool timeLeft() const { return time_left_; }
-  /// timeLeft(); when false, `result` notes that `nested` was cut by the time limit.
-  bool timeLeftOrNote(const char* nested, RegistrationResult* result) const;
-  /// Notes on `result` that `nested` was cut by the time limit, when it was and was not kept.
-  void noteIfCut(const char* nested, bool kept, bool cut, RegistrationResult* result) const;
-
- private:
-  RegistrationParameters* live_;
-  const RegistrationParameters user_;
-  bool time_left_ = true;
-};
-
-// A failed result whose nested alignment (the other direction, a wider search) was cut by the
-// user's time limit, or found none of it left, is the deadline's verdict, not the data's: it
-// says so, and a caller with a deadline (the nodelet's warm attempts) does not retry it from
-// the seed as if the data had rejected it.
-void noteCutByTheTimeLimit(const char* nested, double time_limit_ms, RegistrationResult* result) {
-  result->out_of_time = true;
-  std::ostringstream reason;
-  reason << result->reason << "; " << nested << " was cut by the time limit of " << time_limit_ms
-         << " ms";
-  result->reason = reason.str();
-}
-
-bool NestedAlignment::timeLeftOrNote(const char* nested, RegistrationResult* result) const {
-  if (!time_left_) noteCutByTheTimeLimit(nested, user_.time_limit_ms, result);
-  return time_left_;
-}
-
-void NestedAlignment::noteIfCut(const char* nested, bool kept, bool cut,
-                                RegistrationResult* result) const {
-  if (!kept && cut) noteCutByTheTimeLimit(nested, user_.time_limit_ms, result);
-}
-
-// Names the attempt that align() runs while it lives (the trace's label), then restores the last.
-class AttemptLabel {
- public:
-  AttemptLabel(const char** live, const char* name) : live_(live), before_(*live) { *live = name; }
-  AttemptLabel(const AttemptLabel&) = delete;
-  AttemptLabel& operator=(const AttemptLabel&) = delete;
-  ~AttemptLabel() { *live_ = before_; }
-
- private:
-  const char** live_;
-  const char* before_;
-};
-
-// What a nested alignment leaves: its result (and associations) replace the first's when `keep`;
-// either way the answer counts the indexing both did in this call.
-void adoptNested(bool keep, RegistrationResult* nested, Associations* nested_associations,
-                 RegistrationResult* result, Associations* associations) {
-  if (!keep) {
-    result->target_index_ms += nested->target_index_ms;
-    return;
-  }
-  nested->target_index_ms += result->target_index_ms;
-  *result = std::move(*nested);
-  if (associations) *associations = std::move(*nested_associations);
-}
-
-}  // namespace
 
 PdaRegistration::PdaRegistration(const RegistrationParameters& parameters)
     : parameters_(parameters) {}
@@ -158,9 +81,25 @@ RegistrationResult PdaRegistration::align(const PointList& source,
   const auto start = std::chrono::steady_clock::now();
   RegistrationResult result;
   try {
-    result = alignUnchecked(source, T_target_source_initial, associations);
-    traceAttempt(result, /*adopted=*/true, start);
-    trySecondStart(source, T_target_source_initial, start, &result, associations);
+    // A first attempt whose refine runs leave nu at its floor is questioned there by the second
+    // starts (second_start_attempts.cpp); otherwise they may follow its end.
+    EarlySecondStarts early;
+    const std::function<bool(const EmState&, const TargetIndex&)> at_nu_floor =
+        [&](const EmState& first, const TargetIndex& index) {
+          return secondStartsAtNuFloor(source, T_target_source_initial, start, first, index,
+                                       associations != nullptr, &early);
+        };
+    AttemptOptions first_attempt;
+    first_attempt.at_nu_floor = &at_nu_floor;
+    result = alignUnchecked(source, T_target_source_initial, associations, first_attempt);
+    traceAttempt(result, /*adopted=*/!early.adopted, start);
+    if (early.adopted) {
+      adoptNested(true, &early.adopted_result, &early.adopted_associations, &result, associations);
+    } else if (early.tried) {
+      settleEarlySecondStarts(T_target_source_initial, start, &early, &result, associations);
+    } else {
+      trySecondStart(source, T_target_source_initial, start, &result, associations);
+    }
     tryLocalStart(source, T_target_source_initial, start, &result, associations);
     tryOtherDirection(source, T_target_source_initial, start, &result, associations);
     tryWiderSearch(source, T_target_source_initial, start, &result, associations);
@@ -180,41 +119,6 @@ RegistrationResult PdaRegistration::align(const PointList& source,
   return result;
 }
 
-void PdaRegistration::trySecondStart(const PointList& source, const Eigen::Isometry3d& T_initial,
-                                     std::chrono::steady_clock::time_point started,
-                                     RegistrationResult* result, Associations* associations) {
-  const PointList& used = workspace_.source;  // the points the first alignment ran on
-  if (used.empty()) return;
-  Point centroid = Point::Zero();
-  for (const Point& point : used) centroid += point;
-  centroid /= static_cast<double>(used.size());
-  FirstResultBasin basin;
-  basin.T_found = result->T_target_source;
-  basin.centroid = centroid;
-  basin.final_radius = refineRadius(parameters_, result->sigma * result->sigma);
-  if (!secondStartWarranted(*result, parameters_, T_initial, centroid, basin.final_radius)) return;
-  for (const Point& point : used) basin.source_rms_radius += (point - centroid).squaredNorm();
-  basin.source_rms_radius = std::sqrt(basin.source_rms_radius / static_cast<double>(used.size()));
-  const Eigen::Isometry3d* tried = nullptr;
-  const auto starts = secondStartPoses(result->T_target_source, T_initial, centroid);
-  for (const Eigen::Isometry3d& start : starts) {
-    // A start in the first result's basin would only find it again; one near the start just
-    // tried is the same hypothesis.
-    if (basin.contains(start) || (tried && basin.near(*tried, start))) continue;
-    tried = &start;
-    const NestedAlignment nested(&parameters_, started);
-    const AttemptLabel label(&attempt_, "second start");
-    if (!nested.timeLeft()) return;
-    Associations second_associations;
-    RegistrationResult second =
-        alignUnchecked(source, start, associations ? &second_associations : nullptr, &basin);
-    const bool better = secondStartIsBetter(*result, second);
-    traceAttempt(second, better, started);
-    adoptNested(better, &second, &second_associations, result, associations);
-    if (better) return;
-  }
-}
-
 void PdaRegistration::tryLocalStart(const PointList& source, const Eigen::Isometry3d& T_initial,
                                     std::chrono::steady_clock::time_point started,
                                     RegistrationResult* result, Associations* associations) {
@@ -228,9 +132,10 @@ void PdaRegistration::tryLocalStart(const PointList& source, const Eigen::Isomet
   }
   const AttemptLabel label(&attempt_, "local start");
   Associations local_associations;
+  AttemptOptions options;
+  options.local_start = true;
   RegistrationResult local =
-      alignUnchecked(source, T_initial, associations ? &local_associations : nullptr,
-                     /*abandon_in=*/nullptr, /*local_start=*/true);
+      alignUnchecked(source, T_initial, associations ? &local_associations : nullptr, options);
   local.local_start = true;
   const bool holds = local.converged &&
                      localStartStaysNear(workspace_.source, local.T_target_source, T_initial,

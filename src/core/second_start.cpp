@@ -1,5 +1,6 @@
 #include "pda_registration/core/second_start.hpp"
 
+#include <algorithm>
 #include <cmath>
 
 #include "pda_registration/core/degrees_of_freedom.hpp"
@@ -35,9 +36,13 @@ bool FirstResultBasin::near(const Eigen::Isometry3d& a, const Eigen::Isometry3d&
   return std::hypot(shift, angle * source_rms_radius) < final_radius;
 }
 
-bool secondStartIsBetter(const RegistrationResult& first, const RegistrationResult& second) {
-  return second.converged && !second.out_of_time &&
-         second.support_fraction > first.support_fraction;
+double commonYardstick(const RegistrationParameters& p, double sigma_first, double sigma_second) {
+  return p.inlier_sigmas * std::min(sigma_first, sigma_second);
+}
+
+bool secondStartIsBetter(const RegistrationResult& second, double second_support,
+                         double first_support) {
+  return second.converged && !second.out_of_time && second_support > first_support;
 }
 
 }  // namespace pda_registration

@@ -10,6 +10,7 @@
 
 #include "pda_registration/core/alignment_verdict.hpp"
 #include "pda_registration/core/candidate_sets.hpp"
+#include "pda_registration/core/degrees_of_freedom.hpp"
 #include "pda_registration/core/em_run.hpp"
 #include "pda_registration/core/final_statistics.hpp"
 #include "pda_registration/core/local_start.hpp"
@@ -41,10 +42,11 @@ bool sanitiseInitialGuess(const Eigen::Isometry3d& initial, Eigen::Isometry3d* o
 RegistrationResult PdaRegistration::alignUnchecked(const PointList& source_input,
                                                    const Eigen::Isometry3d& T_target_source_initial,
                                                    Associations* associations,
-                                                   const FirstResultBasin* abandon_in,
-                                                   bool local_start) {
+                                                   const AttemptOptions& options) {
   const auto started = std::chrono::steady_clock::now();
   const RegistrationParameters& p = parameters_;
+  const FirstResultBasin* const abandon_in = options.abandon_in;
+  const bool local_start = options.local_start;
   RegistrationResult result;
   result.T_target_source = T_target_source_initial;
 
@@ -145,6 +147,7 @@ RegistrationResult PdaRegistration::alignUnchecked(const PointList& source_input
   CandidateSets& candidates = workspace_.candidates;
   Increment last_run_step{0.0, 0.0};
   bool em_settled = false;  // did the last run's EM loop stop on the epsilons?
+  bool asked_at_nu_floor = false;
 
   // max_runs bounds the work, counted in runs over the whole source: an approach run over the
   // subset counts as the subset's share. Sliding along a valley of the ground can take the
@@ -289,6 +292,19 @@ RegistrationResult PdaRegistration::alignUnchecked(const PointList& source_input
     if (stage_done || cycling) {
       result.converged = true;
       break;
+    }
+    // nu at its floor, half the points fitting and half not, marks a false rest (second_start.hpp)
+    // long before the refine runs settle into it: a dozen more runs on RGB-D fragments from 20 deg,
+    // a quarter of the alignment's time. The caller may question it here, once.
+    if (options.at_nu_floor && !asked_at_nu_floor && nuEstimatedAtFloor(p, state.nu)) {
+      asked_at_nu_floor = true;
+      if ((*options.at_nu_floor)(state, *index)) {
+        result.reason = "superseded by a second start that fits more of the overlap";
+        result.sigma = std::sqrt(state.sigma_squared);
+        result.nu = state.nu;
+        result.T_target_source = state.T;
+        return result;
+      }
     }
   }
   // With max_runs = 1 (the paper's single-run mode) convergence means EM settled in that run.

@@ -17,4 +17,12 @@ void fillFinalStatistics(const PointList& source, const TargetIndex& index,
                          const EmState& state, RegistrationWorkspace* workspace,
                          RegistrationResult* result, Associations* associations);
 
+/// support_fraction of the pose T measured with a yardstick of one's choice: the share of the
+/// overlap (source points with a target point within `overlap_radius`) whose nearest target point
+/// lies within `inlier_distance`. Two poses compared with one yardstick: a result's own
+/// (inlier_sigmas times its sigma) favours the one whose residuals are wider.
+double supportFractionAt(const TargetIndex& index, const PointList& source,
+                         const Eigen::Isometry3d& T, double inlier_distance, double overlap_radius,
+                         int threads);
+
 }  // namespace pda_registration

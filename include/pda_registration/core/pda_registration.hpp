@@ -11,8 +11,10 @@
 
 #include <Eigen/Geometry>
 #include <chrono>
+#include <functional>
 #include <memory>
 #include <utility>
+#include <vector>
 
 #include "pda_registration/core/alignment_trace.hpp"
 #include "pda_registration/core/associations.hpp"
@@ -26,6 +28,20 @@
 #include "pda_registration/core/target_map.hpp"
 
 namespace pda_registration {
+
+struct EmState;
+
+/// What one attempt of PdaRegistration::align() is besides its start (internal to the engine).
+struct AttemptOptions {
+  /// A second start: it stops (not converged) once it enters the first's basin.
+  const FirstResultBasin* abandon_in = nullptr;
+  /// Every run uses the outlier class, and the alignment stops (not converged) once it moves
+  /// the source further from the seed than its answer could be kept (local_start.hpp).
+  bool local_start = false;
+  /// Asked once, after the first refine run that leaves nu (estimated) at its floor, with the
+  /// run's state and the target it searched; true: the attempt stops there, superseded.
+  const std::function<bool(const EmState&, const TargetIndex&)>* at_nu_floor = nullptr;
+};
 
 class PdaRegistration {
  public:
@@ -67,14 +83,46 @@ class PdaRegistration {
 
  private:
   TargetIndexing indexing() const;
-  /// `abandon_in`: a second start stops (not converged) once it enters the first's basin.
-  /// `local_start`: every run uses the outlier class, and the alignment stops (not converged) once
-  /// it moves the source further from the seed than its answer could be kept (local_start.hpp).
   RegistrationResult alignUnchecked(const PointList& source,
                                     const Eigen::Isometry3d& T_target_source_initial,
                                     Associations* associations,
-                                    const FirstResultBasin* abandon_in = nullptr,
-                                    bool local_start = false);
+                                    const AttemptOptions& options = AttemptOptions());
+  /// What second starts questioned at the first attempt's nu floor left (second_start_attempts.cpp).
+  struct EarlySecondStarts {
+    bool tried = false;    ///< the question was warranted and the starts ran
+    bool adopted = false;  ///< one of them superseded the first attempt: `adopted_result`
+    RegistrationResult adopted_result;
+    Associations adopted_associations;
+    /// Those that converged without superseding it, for the comparison at its end.
+    std::vector<RegistrationResult> pending;
+    std::vector<Associations> pending_associations;
+    double dropped_index_ms = 0.0;  ///< indexing by the starts that neither superseded nor pend
+  };
+  /// The second starts (second_start.hpp) from the first attempt as it stands once nu reaches its
+  /// floor in the refine runs, where the first would spend a dozen more runs on a false rest: one
+  /// that fits more of the overlap than the first as it stands, both measured with its yardstick,
+  /// supersedes it (returns true). Runs in spare_workspace_: the first's own is left as it was.
+  bool secondStartsAtNuFloor(const PointList& source, const Eigen::Isometry3d& T_initial,
+                             std::chrono::steady_clock::time_point started, const EmState& first,
+                             const TargetIndex& first_index, bool want_associations,
+                             EarlySecondStarts* early);
+  /// Whether `second` replaces a first result at T_first, sigma_first (secondStartIsBetter: both
+  /// supports measured on `index` with one yardstick, over the points the first ran on).
+  bool secondStartReplaces(const RegistrationResult& second, const Eigen::Isometry3d& T_first,
+                           double sigma_first, const TargetIndex& index) const;
+  /// The first attempt ended: the pending second starts meet it under secondStartReplaces(), as a
+  /// second start run at its end would.
+  void settleEarlySecondStarts(const Eigen::Isometry3d& T_initial,
+                               std::chrono::steady_clock::time_point started,
+                               EarlySecondStarts* early, RegistrationResult* result,
+                               Associations* associations);
+  /// The second starts out of `basin` (second_start.hpp), in turn, until `keep` takes one (returns
+  /// true); `in_spare_workspace`: run in spare_workspace_, leaving workspace_ as it was.
+  void runSecondStarts(const PointList& source, const Eigen::Isometry3d& T_initial,
+                       std::chrono::steady_clock::time_point started,
+                       const FirstResultBasin& basin, bool want_associations,
+                       bool in_spare_workspace,
+                       const std::function<bool(RegistrationResult*, Associations*)>& keep);
   /// Second alignments from the rotation the first found (two starts, in turn), the first that is
   /// better kept (second_start.hpp).
   void trySecondStart(const PointList& source, const Eigen::Isometry3d& T_initial,
@@ -112,6 +160,7 @@ class PdaRegistration {
   bool source_seen_ = false;   // target_subset: whether subset_voxel_ has been decided yet
   TargetMap target_map_;
   RegistrationWorkspace workspace_;  // scratch memory kept between alignments
+  RegistrationWorkspace spare_workspace_;  // for attempts run while another one pauses
   AlignmentTrace trace_;
   const char* attempt_ = "first";  // the attempt alignUnchecked() is running, for the trace
 };

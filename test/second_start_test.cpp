@@ -1,0 +1,106 @@
+// The second start (second_start.hpp) as align() runs it: questioned at the first refine run that
+// leaves nu at its floor, it supersedes a false rest there, and a first attempt it does not
+// supersede runs on to its end and is compared with it then (second_start_attempts.cpp).
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <string>
+#include <vector>
+
+#include "pda_registration/core/degrees_of_freedom.hpp"
+#include "pda_registration/core/error_metrics.hpp"
+#include "pda_registration/core/pda_registration.hpp"
+#include "pda_registration/core/perturbation.hpp"
+#include "pda_registration/simulation/map_simulation.hpp"
+#include "test_support/simulated_cases.hpp"
+
+namespace pda_registration {
+namespace simulation {
+namespace {
+
+using testing_support::rgbdFragmentOptions;
+
+struct TracedAlignment {
+  std::vector<RunRecord> first_runs;
+  std::vector<AttemptRecord> attempts;
+  RegistrationResult result;
+};
+
+TracedAlignment alignTraced(const SimulatedMaps& maps, double degrees, double metres,
+                            uint64_t seed) {
+  TracedAlignment traced;
+  PdaRegistration registration((RegistrationParameters()));
+  AlignmentTrace trace;
+  trace.run = [&traced](const RunRecord& r) {
+    if (std::string(r.attempt) == "first") traced.first_runs.push_back(r);
+  };
+  trace.attempt = [&traced](const AttemptRecord& a) { traced.attempts.push_back(a); };
+  registration.setTrace(trace);
+  EXPECT_TRUE(registration.setTarget(maps.dense));
+  traced.result = registration.align(
+      maps.sparse, maps.T_target_source * randomPerturbation(degrees, metres, seed));
+  return traced;
+}
+
+const AttemptRecord* attemptNamed(const TracedAlignment& traced, const std::string& name) {
+  for (const AttemptRecord& a : traced.attempts) {
+    if (name == a.attempt) return &a;
+  }
+  return nullptr;
+}
+
+int refineRunsAtTheFloor(const TracedAlignment& traced) {
+  const RegistrationParameters p;
+  return static_cast<int>(std::count_if(
+      traced.first_runs.begin(), traced.first_runs.end(), [&p](const RunRecord& r) {
+        return std::string(r.stage) == "refine" && nuEstimatedAtFloor(p, r.nu);
+      }));
+}
+
+// The RGB-D fragment pair of seed 5 from 20 deg / 1 m (perturbation 6): the first attempt slides
+// a desk's repeat along the walkway, and its third refine run leaves nu at its floor. Run to its
+// end it took 10 more refine runs into that rest (1.9 cm sigma, support below the right pose's),
+// and the second start after it reached the truth. Questioned at the floor, the second start
+// supersedes it there: the same answer without those runs.
+TEST(EarlySecondStart, SupersedesAFalseRestOnceNuReachesItsFloor) {
+  const SimulatedMaps maps = simulateMaps(rgbdFragmentOptions(5));
+  const TracedAlignment traced = alignTraced(maps, 20.0, 1.0, 6);
+
+  const AttemptRecord* first = attemptNamed(traced, "first");
+  const AttemptRecord* second = attemptNamed(traced, "second start");
+  ASSERT_NE(first, nullptr);
+  ASSERT_NE(second, nullptr);
+  EXPECT_FALSE(first->adopted);
+  EXPECT_NE(first->reason.find("superseded"), std::string::npos) << first->reason;
+  EXPECT_TRUE(second->adopted);
+  ASSERT_FALSE(traced.first_runs.empty());
+  EXPECT_EQ(refineRunsAtTheFloor(traced), 1) << "the first attempt ran on past its floor";
+  EXPECT_EQ(traced.first_runs.back().run, first->runs);
+  const RegistrationResult& r = traced.result;
+  ASSERT_TRUE(r.converged) << r.reason;
+  EXPECT_LT(poseError(maps.sparse, r.T_target_source, maps.T_target_source).mean_distance, 0.01);
+  EXPECT_LT(r.sigma, 0.015);
+}
+
+// The pair of seed 3 sharing a third of the office (fragment length 0.4) from 10 deg / 0.5 m
+// (perturbation 3): the first attempt comes to rest 2.73 m along the walkway, one desk repeat off,
+// at sigma 3.8 cm, and the second start from the rotation it found reaches the truth at sigma
+// 1.8 cm. Each measured with its own 3 sigma, the false rest fitted more of the overlap and the
+// truth was dropped (then 2.73 m); with one yardstick for both, the truth is kept.
+TEST(EarlySecondStart, KeepsTheTruthOverAFalseRestMeasuredWithOneYardstick) {
+  MapSimulationOptions options = rgbdFragmentOptions(3);
+  options.fragment_length = 0.4;
+  const SimulatedMaps maps = simulateMaps(options);
+  const TracedAlignment traced = alignTraced(maps, 10.0, 0.5, 3);
+  const RegistrationResult& r = traced.result;
+  ASSERT_TRUE(r.converged) << r.reason;
+  EXPECT_LT(poseError(maps.sparse, r.T_target_source, maps.T_target_source).mean_distance, 0.03);
+  const AttemptRecord* second = attemptNamed(traced, "second start");
+  ASSERT_NE(second, nullptr);
+  EXPECT_TRUE(second->adopted);
+}
+
+}  // namespace
+}  // namespace simulation
+}  // namespace pda_registration
