@@ -1,8 +1,9 @@
 #include "pda_registration/core/pda_registration.hpp"
 
 // The engine's entry points: the target, the parameters, and align(), which runs the staged
-// alignment (staged_alignment.cpp) and, where its result calls for one, a second start, a local
-// start, the other direction or a wider search.
+// alignment (staged_alignment.cpp) and, where its result calls for one, a second start
+// (second_start_attempts.cpp: also while the first pauses at nu's floor), a local start, the
+// other direction or a wider search.
 
 #include <chrono>
 #include <cmath>

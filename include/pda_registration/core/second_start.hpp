@@ -6,7 +6,8 @@
 // the other half: the Student-t's nu, estimated by EM, ends at its floor (all 20 converged
 // failures of simulated RGB-D fragment pairs from 20 deg; their correct results ended at 1.5-3.2).
 // Started again from the rotation it found, the same alignment reaches the right pose, and the
-// better-supported result is kept.
+// result that fits more of the overlap (both measured with one yardstick) is kept. align() asks
+// as soon as the first attempt's refine runs leave nu at its floor (second_start_attempts.cpp).
 //
 // Where to put the source for that start depends on where the seed's error pivots, which is not
 // known: a tf chain errs by a rotation about the sensor plus a translation, so the seed puts the
