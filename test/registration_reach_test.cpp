@@ -92,10 +92,12 @@ TEST(HonestVerdict, ARefineRunWhoseResidualsSpanTheSearchEndsItsAttempt) {
   const RegistrationResult result =
       registration.align(maps.sparse, maps.T_target_source * randomPerturbation(2.0, 0.1, 1));
 
-  ASSERT_FALSE(attempts.empty());
-  EXPECT_EQ(std::string(attempts.front().attempt), "first");
-  EXPECT_NE(attempts.front().reason.find("unresolved"), std::string::npos)
-      << attempts.front().reason;
+  // Second starts run at nu's floor may be noted before the first attempt ends.
+  const auto first = std::find_if(attempts.begin(), attempts.end(), [](const AttemptRecord& a) {
+    return std::string(a.attempt) == "first";
+  });
+  ASSERT_TRUE(first != attempts.end());
+  EXPECT_NE(first->reason.find("unresolved"), std::string::npos) << first->reason;
   ASSERT_FALSE(first_runs.empty());
   const auto spans = [&p](const RunRecord& r) {
     return std::string(r.stage) == "refine" && 6.0 * r.sigma >= p.radius;
