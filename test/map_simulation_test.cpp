@@ -285,9 +285,11 @@ TEST(MapSimulation, ShorterRgbdFragmentsOverlapLessAndStillAlign) {
 // set of docs/benchmark.md). The two thirds without a counterpart pull the usual alignment along
 // the walkway: layout 5 from 2 deg 2.6 m, not converged; layout 3 from 5 deg onto a rest one desk
 // repeat along it, 2.7 m off, converged (nu at its floor). The local start with the outlier class
-// (local_start.hpp) stays at the truth on layout 5 (7 mm; GICP on 0.1-m voxels 1.8 cm), in the
-// usual direction (the other one converged 2.6 m off); on layout 3 (1.6 cm; GICP 3.8 cm) the
-// second start at nu's floor now gets there first (second_start_attempts.cpp).
+// (local_start.hpp) stays at the truth on layout 5 (7 mm; GICP on 0.1-m voxels 1.8 cm), and the
+// other direction, which the first warranted and which meets it, finds the truth too (with an
+// earlier alignment it converged 2.6 m off): here in double precision it fits more of the overlap
+// and is kept; on layout 3 (1.6 cm; GICP 3.8 cm) the second start at nu's floor gets
+// there first (second_start_attempts.cpp).
 TEST(MapSimulation, FragmentsSharingAThirdAlignFromNearTheSeed) {
   struct Case {
     int layout;
@@ -307,9 +309,10 @@ TEST(MapSimulation, FragmentsSharingAThirdAlignFromNearTheSeed) {
     const RegistrationResult result = registration.align(maps.sparse, initial);
     ASSERT_TRUE(result.converged) << "layout " << c.layout << ": " << result.reason;
     if (c.layout == 5) {
-      EXPECT_TRUE(result.local_start) << "layout " << c.layout;
+      EXPECT_TRUE(result.local_start || result.roles_swapped) << "layout " << c.layout;
+    } else {
+      EXPECT_FALSE(result.local_start || result.roles_swapped) << "layout " << c.layout;
     }
-    EXPECT_FALSE(result.roles_swapped) << "layout " << c.layout;
     EXPECT_LT(poseError(maps.sparse, result.T_target_source, maps.T_target_source).mean_distance,
               0.02)
         << "layout " << c.layout;

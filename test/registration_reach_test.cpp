@@ -73,7 +73,9 @@ TEST(HonestVerdict, ResidualsAsWideAsTheSearchAreUnresolved) {
 // RGB-D fragments that share a third of the scene (layout 5, each 40 % of the walkway), from 2
 // deg: the two thirds without a counterpart hold sigma at 0.14-0.18 m, and once a refine run's
 // residuals span the search the attempt stops there, "unresolved" (it wandered 12 more runs at
-// that sigma into the same verdict); the local start then finds the truth.
+// that sigma into the same verdict); the local start then finds the truth, and so does the other
+// direction, which meets it (the better supported kept: here the other direction, in the PCD
+// files' float precision the local start).
 TEST(HonestVerdict, ARefineRunWhoseResidualsSpanTheSearchEndsItsAttempt) {
   MapSimulationOptions options = rgbdFragmentOptions(5);
   options.fragment_length = 0.4;
@@ -106,7 +108,7 @@ TEST(HonestVerdict, ARefineRunWhoseResidualsSpanTheSearchEndsItsAttempt) {
       << "the first attempt's last run, sigma " << first_runs.back().sigma;
   EXPECT_EQ(std::count_if(first_runs.begin(), first_runs.end(), spans), 1);
   ASSERT_TRUE(result.converged) << result.reason;
-  EXPECT_TRUE(result.local_start);
+  EXPECT_TRUE(result.local_start || result.roles_swapped);
   EXPECT_LT(poseError(maps.sparse, result.T_target_source, maps.T_target_source).mean_distance,
             0.02);
 }
@@ -243,6 +245,25 @@ TEST(Reach, TheWiderSearchKeepsARadiusTheUserFixed) {
     }
   }
   EXPECT_LE(farthest, fixed.radius);
+}
+
+// An office whose chairs all moved before the VLP-16 scanned it (pda_simulate --seed 7
+// --scene-changes 1.0, held out in docs/benchmark.md), from 20 deg / 1 m: the first alignment comes
+// to rest unresolved (sigma 0.22 m), and the local start, which from that far converges as readily
+// on a false fit near the seed, ended 2.16 m off with 11 % of its overlap within 3 sigma. It was
+// kept, and the wider search never ran; alone, that finds the truth (3.7 mm, 73 %). A local start
+// adopted where the first warranted the wider search now meets it, the better supported kept.
+TEST(Reach, AnOfficeFromTwentyDegreesKeepsTheWiderSearchOverAFalseLocalStart) {
+  MapSimulationOptions options;
+  options.seed = 7;
+  options.scene_change_share = 1.0;
+  const SimulatedMaps maps = simulateMaps(options);
+  RegistrationResult result;
+  const double error = alignedError(maps, RegistrationParameters(), 20.0, 1.0, 1, &result);
+  EXPECT_TRUE(result.converged) << result.reason;
+  EXPECT_TRUE(result.search_widened);
+  EXPECT_FALSE(result.local_start);
+  EXPECT_LT(error, 0.01);
 }
 
 // A time limit that the car park's first alignment (unresolved, 11 deg short) fits within but its

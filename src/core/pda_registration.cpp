@@ -15,6 +15,7 @@
 
 #include "pda_registration/core/alignment_direction.hpp"
 #include "pda_registration/core/em_run.hpp"
+#include "pda_registration/core/final_statistics.hpp"
 #include "pda_registration/core/local_start.hpp"
 #include "pda_registration/core/nested_alignment.hpp"
 #include "pda_registration/core/pose_covariance.hpp"
@@ -101,9 +102,17 @@ RegistrationResult PdaRegistration::align(const PointList& source,
     } else {
       trySecondStart(source, T_target_source_initial, start, &result, associations);
     }
+    // What the first result warrants, before a local start may stand in for it: from a seed far
+    // off the local start converges as readily on a false fit near it (local_start.hpp), so the
+    // fallbacks the first warranted still meet it, the better supported kept.
+    const bool other_direction_warranted =
+        otherDirectionWarranted(result, source, T_target_source_initial);
+    const bool wider_search_warranted = widerSearchWarranted(result, parameters_);
     tryLocalStart(source, T_target_source_initial, start, &result, associations);
-    tryOtherDirection(source, T_target_source_initial, start, &result, associations);
-    tryWiderSearch(source, T_target_source_initial, start, &result, associations);
+    tryOtherDirection(source, T_target_source_initial, start, other_direction_warranted, &result,
+                      associations);
+    tryWiderSearch(source, T_target_source_initial, start, wider_search_warranted, &result,
+                   associations);
   } catch (const std::exception& error) {
     if (associations) *associations = Associations();
     result = RegistrationResult();
@@ -147,51 +156,73 @@ void PdaRegistration::tryLocalStart(const PointList& source, const Eigen::Isomet
   if (!first_converged) nested.noteIfCut("a local start", holds, cut, result);
 }
 
+bool PdaRegistration::otherDirectionWarranted(const RegistrationResult& first,
+                                              const PointList& source,
+                                              const Eigen::Isometry3d& T_initial) const {
+  // PDA's natural direction failed and the source is the denser cloud: its model may hold the
+  // other way round (alignment_direction.hpp). Only a whole target is considered (one large
+  // enough to crop is a dense map already).
+  const std::shared_ptr<const TargetIndex> target = target_map_.index();
+  return !first.converged && !first.out_of_time && target && !first.target_cropped &&
+         first.source_points_used >= static_cast<size_t>(parameters_.min_correspondences) &&
+         sourceIsDenser(countInOverlap(target->points(), source, T_initial));
+}
+
 void PdaRegistration::tryOtherDirection(const PointList& source, const Eigen::Isometry3d& T_initial,
                                         std::chrono::steady_clock::time_point started,
-                                        RegistrationResult* result, Associations* associations) {
-  // PDA's natural direction failed and the source is the denser cloud: its model may hold the
-  // other way round (alignment_direction.hpp). Kept only if that run converges. Only a whole
-  // target is considered (one large enough to crop is a dense map already).
-  const std::shared_ptr<const TargetIndex> target = target_map_.index();
-  if (result->converged || result->out_of_time || !target || result->target_cropped ||
-      result->source_points_used < static_cast<size_t>(parameters_.min_correspondences) ||
-      !sourceIsDenser(countInOverlap(target->points(), source, T_initial))) {
+                                        bool first_warranted_it, RegistrationResult* result,
+                                        Associations* associations) {
+  // Kept only if it converges; over an adopted local start, only if it also fits more of the
+  // overlap (the reversed room from 20 deg: a local start 1.7 m off at support 0.1).
+  const bool contest = first_warranted_it && result->converged && result->local_start;
+  if (!contest && !otherDirectionWarranted(*result, source, T_initial)) return;
+  const NestedAlignment nested(&parameters_, started);
+  // A converged result stands when there is no time to question it; a failed one says why.
+  if (contest ? !nested.timeLeft() : !nested.timeLeftOrNote("the other direction", result)) {
     return;
   }
-  const NestedAlignment nested(&parameters_, started);
-  if (!nested.timeLeftOrNote("the other direction", result)) return;
   const AttemptLabel label(&attempt_, "other direction");
   Associations swapped_associations;
+  bool fits_more = false;
   RegistrationResult swapped =
-      alignSwapped(source, T_initial, associations ? &swapped_associations : nullptr);
-  traceAttempt(swapped, swapped.converged, started);
-  if (swapped.converged) {
+      alignSwapped(source, T_initial, associations ? &swapped_associations : nullptr,
+                   contest ? result : nullptr, &fits_more);
+  const bool holds = swapped.converged && (!contest || fits_more);
+  traceAttempt(swapped, holds, started);
+  if (holds) {
     *result = std::move(swapped);
     if (associations) *associations = std::move(swapped_associations);
-  } else {
+  } else if (!contest) {
     nested.noteIfCut("the other direction", false, swapped.out_of_time, result);
   }
 }
 
 void PdaRegistration::tryWiderSearch(const PointList& source, const Eigen::Isometry3d& T_initial,
                                      std::chrono::steady_clock::time_point started,
-                                     RegistrationResult* result, Associations* associations) {
-  if (!widerSearchWarranted(*result, parameters_)) return;
+                                     bool first_warranted_it, RegistrationResult* result,
+                                     Associations* associations) {
+  // A local start converges as readily on a false fit near a seed far off (local_start.hpp): one
+  // adopted after a first attempt that warranted the wider search meets the wider search's answer.
+  const bool contest = first_warranted_it && result->converged && result->local_start;
+  if (!contest && !widerSearchWarranted(*result, parameters_)) return;
   const RegistrationParameters user = parameters_;
   const NestedAlignment nested(&parameters_, started);
-  if (!nested.timeLeftOrNote("a wider search", result)) return;
+  // A converged result stands when there is no time to question it; a failed one says why.
+  if (contest ? !nested.timeLeft() : !nested.timeLeftOrNote("a wider search", result)) return;
   parameters_ = widerSearchParameters(parameters_);  // the user's, with what is left of the time
   const AttemptLabel label(&attempt_, "wider search");
   Associations wide_associations;
   RegistrationResult wide =
       alignUnchecked(source, T_initial, associations ? &wide_associations : nullptr);
   wide.search_widened = true;
-  const bool holds = widerSearchHolds(wide, user);
+  parameters_ = user;  // the contest is judged with the user's radius
+  const bool holds = widerSearchHolds(wide, user) &&
+                     (!contest || fitsMoreOfTheOverlap(wide, result->T_target_source,
+                                                       result->sigma, *target_map_.index()));
   const bool cut = wide.out_of_time;
   traceAttempt(wide, holds, started);
   adoptNested(holds, &wide, &wide_associations, result, associations);
-  nested.noteIfCut("a wider search", holds, cut, result);
+  if (!contest) nested.noteIfCut("a wider search", holds, cut, result);
 }
 
 void PdaRegistration::traceAttempt(const RegistrationResult& attempt, bool adopted,
@@ -211,7 +242,9 @@ void PdaRegistration::traceAttempt(const RegistrationResult& attempt, bool adopt
 
 RegistrationResult PdaRegistration::alignSwapped(const PointList& source,
                                                  const Eigen::Isometry3d& T_target_source_initial,
-                                                 Associations* associations) {
+                                                 Associations* associations,
+                                                 const RegistrationResult* incumbent,
+                                                 bool* fits_more) {
   PdaRegistration swapped(parameters_);
   swapped.trace_.run = trace_.run;  // its runs are this attempt's; align() notes the attempt
   swapped.attempt_ = attempt_;
@@ -225,6 +258,18 @@ RegistrationResult PdaRegistration::alignSwapped(const PointList& source,
   result =
       swapped.alignUnchecked(target->points(), T_target_source_initial.inverse(), associations);
   const Eigen::Isometry3d T_source_target = result.T_target_source;
+  if (incumbent && fits_more) {
+    // Both supports where a nearest sample measures a distance to the surface: the sparser
+    // cloud's points against the denser one's index (the other way, the truth of the reversed
+    // room fits less than a local start's false fit 1.7 m off).
+    const double yardstick = commonYardstick(parameters_, incumbent->sigma, result.sigma);
+    const auto supportAt = [&](const Eigen::Isometry3d& T) {
+      return supportFractionAt(*swapped.target_map_.index(), swapped.workspace_.source, T,
+                               yardstick, parameters_.radius, parameters_.threads);
+    };
+    *fits_more = secondStartIsBetter(result, supportAt(T_source_target),
+                                     supportAt(incumbent->T_target_source.inverse()));
+  }
   result.T_target_source = T_source_target.inverse();
   result.covariance = invertedPoseCovariance(T_source_target, result.covariance);
   result.roles_swapped = true;

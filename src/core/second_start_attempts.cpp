@@ -50,9 +50,9 @@ class WorkspaceSwap {
 
 }  // namespace
 
-bool PdaRegistration::secondStartReplaces(const RegistrationResult& second,
-                                          const Eigen::Isometry3d& T_first, double sigma_first,
-                                          const TargetIndex& index) const {
+bool PdaRegistration::fitsMoreOfTheOverlap(const RegistrationResult& second,
+                                           const Eigen::Isometry3d& T_first, double sigma_first,
+                                           const TargetIndex& index) const {
   if (!second.converged || second.out_of_time) return false;
   const PointList& used = workspace_.source;
   const double yardstick = commonYardstick(parameters_, sigma_first, second.sigma);
@@ -103,7 +103,7 @@ void PdaRegistration::trySecondStart(const PointList& source, const Eigen::Isome
   runSecondStarts(source, T_initial, started, basin, associations != nullptr,
                   /*in_spare_workspace=*/false,
                   [&](RegistrationResult* second, Associations* second_associations) {
-                    const bool better = secondStartReplaces(
+                    const bool better = fitsMoreOfTheOverlap(
                         *second, result->T_target_source, result->sigma, *target_map_.index());
                     traceAttempt(*second, better, started);
                     adoptNested(better, second, second_associations, result, associations);
@@ -140,7 +140,7 @@ bool PdaRegistration::secondStartsAtNuFloor(const PointList& source,
           return false;
         }
         // The first's residuals are still wide here: the second's yardstick measures both.
-        if (secondStartReplaces(*second, first.T, std::sqrt(first.sigma_squared), first_index)) {
+        if (fitsMoreOfTheOverlap(*second, first.T, std::sqrt(first.sigma_squared), first_index)) {
           traceAttempt(*second, true, started);
           early->adopted = true;
           early->adopted_result = std::move(*second);
@@ -172,7 +172,7 @@ void PdaRegistration::settleEarlySecondStarts(const Eigen::Isometry3d& T_initial
   for (size_t i = 0; i < early->pending.size(); ++i) {
     const bool better =
         !adopted && warranted &&
-        secondStartReplaces(early->pending[i], result->T_target_source, result->sigma, *index);
+        fitsMoreOfTheOverlap(early->pending[i], result->T_target_source, result->sigma, *index);
     {
       // Noted once decided: its runs came before the first attempt's last ones.
       const AttemptLabel label(&attempt_, "second start");

@@ -107,10 +107,11 @@ class PdaRegistration {
                              const TargetIndex& first_index, bool want_associations,
                              EarlySecondStarts* early);
   /// Whether `second` replaces a first result at T_first, sigma_first (secondStartIsBetter: both
-  /// supports measured on `index` with one yardstick, over the points the first ran on).
-  bool secondStartReplaces(const RegistrationResult& second, const Eigen::Isometry3d& T_first,
-                           double sigma_first, const TargetIndex& index) const;
-  /// The first attempt ended: the pending second starts meet it under secondStartReplaces(), as a
+  /// supports measured on `index` with one yardstick, over the points the first ran on). Also
+  /// whether a wider search replaces an adopted local start.
+  bool fitsMoreOfTheOverlap(const RegistrationResult& second, const Eigen::Isometry3d& T_first,
+                            double sigma_first, const TargetIndex& index) const;
+  /// The first attempt ended: the pending second starts meet it under fitsMoreOfTheOverlap(), as a
   /// second start run at its end would.
   void settleEarlySecondStarts(const Eigen::Isometry3d& T_initial,
                                std::chrono::steady_clock::time_point started,
@@ -134,19 +135,28 @@ class PdaRegistration {
                      std::chrono::steady_clock::time_point started, RegistrationResult* result,
                      Associations* associations);
   /// A result that came to rest unresolved: once more from the seed with the radius widened,
-  /// kept if that converges at a fit (wider_search.hpp).
+  /// kept if that converges at a fit (wider_search.hpp). `first_warranted_it`: the first attempt
+  /// warranted it, so a local start adopted since then meets it and the better supported stays.
   void tryWiderSearch(const PointList& source, const Eigen::Isometry3d& T_initial,
-                      std::chrono::steady_clock::time_point started, RegistrationResult* result,
-                      Associations* associations);
+                      std::chrono::steady_clock::time_point started, bool first_warranted_it,
+                      RegistrationResult* result, Associations* associations);
+  /// Whether a failed `first` on a source denser than the target warrants the other direction.
+  bool otherDirectionWarranted(const RegistrationResult& first, const PointList& source,
+                               const Eigen::Isometry3d& T_initial) const;
   /// A failed result on a source denser than the target: the other way round, with what is left
-  /// of the time limit, kept if that converges (alignment_direction.hpp).
+  /// of the time limit, kept if that converges (alignment_direction.hpp). `first_warranted_it`:
+  /// the first attempt warranted it, so a local start adopted since meets it, as in tryWiderSearch.
   void tryOtherDirection(const PointList& source, const Eigen::Isometry3d& T_initial,
-                         std::chrono::steady_clock::time_point started, RegistrationResult* result,
-                         Associations* associations);
-  /// The target aligned onto `source` (the denser cloud), answered in the usual direction.
+                         std::chrono::steady_clock::time_point started, bool first_warranted_it,
+                         RegistrationResult* result, Associations* associations);
+  /// The target aligned onto `source` (the denser cloud), answered in the usual direction. With
+  /// an `incumbent`, *fits_more says whether the answer fits more of the overlap than it does
+  /// (secondStartIsBetter, one yardstick, the target's points against the source's index).
   RegistrationResult alignSwapped(const PointList& source,
                                   const Eigen::Isometry3d& T_target_source_initial,
-                                  Associations* associations);
+                                  Associations* associations,
+                                  const RegistrationResult* incumbent = nullptr,
+                                  bool* fits_more = nullptr);
   /// Tells the trace that the attempt named attempt_ has ended (`adopted`: as align()'s answer).
   void traceAttempt(const RegistrationResult& attempt, bool adopted,
                     std::chrono::steady_clock::time_point started) const;

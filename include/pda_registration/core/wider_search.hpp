@@ -5,7 +5,8 @@
 // rest 11-14 deg short in yaw with sigma as wide as its search (the "unresolved" verdict). Aligned
 // again from the seed with the radius doubled, the same scan reaches those structures and converges
 // (a held-out car park of pda_simulate, seed 6: 3 -> 5 of 5 from 20 deg; PCL GICP 5 of 5). Only a
-// result that already failed pays for it: a converged alignment never runs a second time.
+// result that already failed pays for it: a converged alignment never runs a second time, but a
+// local start that converged after a first that warranted it does (local_start.hpp).
 
 #include "pda_registration/core/registration_parameters.hpp"
 #include "pda_registration/core/registration_result.hpp"
