@@ -173,9 +173,11 @@ void PdaRegistration::tryOtherDirection(const PointList& source, const Eigen::Is
                                         bool first_warranted_it, RegistrationResult* result,
                                         Associations* associations) {
   // Kept only if it converges; over an adopted local start, only if it also fits more of the
-  // overlap (the reversed room from 20 deg: a local start 1.7 m off at support 0.1).
-  const bool contest = first_warranted_it && result->converged && result->local_start;
-  if (!contest && !otherDirectionWarranted(*result, source, T_initial)) return;
+  // overlap (the reversed room from 20 deg: a local start 1.7 m off at support 0.1). Since the
+  // first, only the local start has run: it converged (and was kept) or the result is the first's,
+  // perhaps now cut by the time limit.
+  if (!first_warranted_it || result->out_of_time) return;
+  const bool contest = result->converged;
   const NestedAlignment nested(&parameters_, started);
   // A converged result stands when there is no time to question it; a failed one says why.
   if (contest ? !nested.timeLeft() : !nested.timeLeftOrNote("the other direction", result)) {
@@ -203,8 +205,10 @@ void PdaRegistration::tryWiderSearch(const PointList& source, const Eigen::Isome
                                      Associations* associations) {
   // A local start converges as readily on a false fit near a seed far off (local_start.hpp): one
   // adopted after a first attempt that warranted the wider search meets the wider search's answer.
-  const bool contest = first_warranted_it && result->converged && result->local_start;
-  if (!contest && !widerSearchWarranted(*result, parameters_)) return;
+  // One the other direction replaced stands; so does a result cut by the time limit since.
+  if (!first_warranted_it || result->out_of_time) return;
+  if (result->converged && !result->local_start) return;
+  const bool contest = result->converged;
   const RegistrationParameters user = parameters_;
   const NestedAlignment nested(&parameters_, started);
   // A converged result stands when there is no time to question it; a failed one says why.

@@ -135,8 +135,9 @@ class PdaRegistration {
                      std::chrono::steady_clock::time_point started, RegistrationResult* result,
                      Associations* associations);
   /// A result that came to rest unresolved: once more from the seed with the radius widened,
-  /// kept if that converges at a fit (wider_search.hpp). `first_warranted_it`: the first attempt
-  /// warranted it, so a local start adopted since then meets it and the better supported stays.
+  /// kept if that converges at a fit (wider_search.hpp). Runs only where the first attempt
+  /// warranted it (`first_warranted_it`); a local start adopted since then meets it, and the
+  /// better supported stays.
   void tryWiderSearch(const PointList& source, const Eigen::Isometry3d& T_initial,
                       std::chrono::steady_clock::time_point started, bool first_warranted_it,
                       RegistrationResult* result, Associations* associations);
@@ -144,8 +145,9 @@ class PdaRegistration {
   bool otherDirectionWarranted(const RegistrationResult& first, const PointList& source,
                                const Eigen::Isometry3d& T_initial) const;
   /// A failed result on a source denser than the target: the other way round, with what is left
-  /// of the time limit, kept if that converges (alignment_direction.hpp). `first_warranted_it`:
-  /// the first attempt warranted it, so a local start adopted since meets it, as in tryWiderSearch.
+  /// of the time limit, kept if that converges (alignment_direction.hpp). Runs only where the
+  /// first attempt warranted it (`first_warranted_it`, computed once, before the local start); a
+  /// local start adopted since meets it, as in tryWiderSearch.
   void tryOtherDirection(const PointList& source, const Eigen::Isometry3d& T_initial,
                          std::chrono::steady_clock::time_point started, bool first_warranted_it,
                          RegistrationResult* result, Associations* associations);
