@@ -148,6 +148,7 @@ TEST(AlignmentTrace, NotesEveryAttemptAndAnswersWithTheLastAdopted) {
   ASSERT_NE(answer, nullptr);
   EXPECT_EQ(answer->converged, r.converged);
   EXPECT_EQ(answer->runs, r.runs);
+  EXPECT_TRUE(answer->T_target_source.isApprox(r.T_target_source, 1e-12));
   EXPECT_EQ(r.roles_swapped, std::string(answer->attempt) == "other direction");
   EXPECT_EQ(r.local_start, std::string(answer->attempt) == "local start");
   EXPECT_TRUE(r.converged) << r.reason;

@@ -231,12 +231,14 @@ TEST(PdaAlign, AlignsARealCaseAndReportsErrorsAgainstGroundTruth) {
   EXPECT_LT((written.translation() - truth.translation()).norm(), 0.03);
 }
 
-// --trace: one JSON line per run and per attempt on stderr; stdout keeps its one line.
+// --trace: one JSON line per run and per attempt on stderr; stdout keeps its one line. The
+// attempt's line carries its estimate and, with a ground truth, its eq. 22 error: the answer's.
 TEST(PdaAlign, TracesEveryRunAndAttemptOnStderr) {
   const std::string data = testing_support::sharedDataDirectory() + "/room_scan/";
-  const CommandRun run =
-      runPdaAlign("--target " + data + "target.pcd --source " + data + "source.pcd --initial " +
-                  data + "T_target_source.txt --perturb 5,0.25 --seed 3 --trace");
+  const CommandRun run = runPdaAlign(
+      "--target " + data + "target.pcd --source " + data + "source.pcd --initial " + data +
+      "T_target_source.txt --perturb 5,0.25 --seed 3 --trace --ground-truth " + data +
+      "T_target_source.txt");
   ASSERT_EQ(run.exit_code, 0) << run.err;
   EXPECT_EQ(lineCount(run.out), 1u);
   const double runs = jsonNumber(run.out, "runs");
@@ -253,6 +255,9 @@ TEST(PdaAlign, TracesEveryRunAndAttemptOnStderr) {
       ++attempt_lines;
       EXPECT_NE(line.find("\"adopted\":true"), std::string::npos) << line;
       EXPECT_EQ(jsonNumber(line, "runs"), runs) << line;
+      EXPECT_DOUBLE_EQ(jsonNumber(line, "mean_distance"), jsonNumber(run.out, "mean_distance"));
+      EXPECT_LT(jsonNumber(line, "mean_distance"), 0.03) << line;
+      EXPECT_NE(line.find("\"T\":["), std::string::npos) << line;
     } else {
       ADD_FAILURE() << "not a trace line: " << line;
     }

@@ -239,6 +239,7 @@ void PdaRegistration::traceAttempt(const RegistrationResult& attempt, bool adopt
   record.reason = attempt.reason;
   record.runs = attempt.runs;
   record.sigma = attempt.sigma;
+  record.T_target_source = attempt.T_target_source;
   record.time_ms =
       std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - started).count();
   trace_.attempt(record);

@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <functional>
 #include <iostream>
 #include <map>
 #include <sstream>
@@ -98,6 +99,12 @@ int main(int argc, char** argv) {
     return usageError("--target: " + error);
   if (!loadPointCloudFile(cl.text("source"), &source, &error))
     return usageError("--source: " + error);
+  std::function<double(const Eigen::Isometry3d&)> error_from_truth;
+  if (has_ground_truth) {
+    error_from_truth = [&](const Eigen::Isometry3d& T) {
+      return poseError(source, T, ground_truth).mean_distance;
+    };
+  }
 
   // Timing comparison: every method runs `repeat` times, interleaved, on identical inputs.
   std::vector<std::string> methods = {method};
@@ -110,7 +117,7 @@ int main(int argc, char** argv) {
   for (int round = 0; round < rounds; ++round) {
     for (const std::string& m : methods) {
       last[m] = runMethod(m, target, source, initial, settings,
-                          traced ? jsonLinesTrace(&std::cerr) : AlignmentTrace());
+                          traced ? jsonLinesTrace(&std::cerr, error_from_truth) : AlignmentTrace());
       times[m].push_back(last[m].result.time_ms);
     }
   }

@@ -6,7 +6,8 @@
 
 namespace pda_registration {
 
-AlignmentTrace jsonLinesTrace(std::ostream* out) {
+AlignmentTrace jsonLinesTrace(std::ostream* out,
+                              std::function<double(const Eigen::Isometry3d&)> error_from_truth) {
   AlignmentTrace trace;
   trace.run = [out](const RunRecord& r) {
     JsonLine line;
@@ -16,11 +17,13 @@ AlignmentTrace jsonLinesTrace(std::ostream* out) {
     line.add("em_iterations", r.em_iterations);
     *out << line.str() << '\n';
   };
-  trace.attempt = [out](const AttemptRecord& a) {
+  trace.attempt = [out, error_from_truth](const AttemptRecord& a) {
     JsonLine line;
     line.add("trace", "attempt").add("attempt", a.attempt).add("converged", a.converged);
     line.add("adopted", a.adopted).add("reason", a.reason).add("runs", a.runs);
     line.add("sigma", a.sigma).add("time_ms", a.time_ms);
+    if (error_from_truth) line.add("mean_distance", error_from_truth(a.T_target_source));
+    line.add("T", a.T_target_source);
     *out << line.str() << '\n';
   };
   return trace;

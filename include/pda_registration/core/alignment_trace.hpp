@@ -12,6 +12,8 @@
 #include <functional>
 #include <string>
 
+#include <Eigen/Geometry>
+
 namespace pda_registration {
 
 /// One run: the candidate sets recomputed, then EM on them.
@@ -38,6 +40,8 @@ struct AttemptRecord {
   int runs = 0;  ///< its runs as listed; a least-squares polish over a warp adds its own, unlisted
   double sigma = 0.0;
   double time_ms = 0.0;  ///< since align() began
+  /// its estimate, p_target = T * p_source, in align()'s frames (the other direction's inverted)
+  Eigen::Isometry3d T_target_source = Eigen::Isometry3d::Identity();
 };
 
 /// Receivers, each optional; called on align()'s own thread, in order.
