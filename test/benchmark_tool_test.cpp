@@ -58,11 +58,12 @@ TEST(PdaBenchmark, WritesEveryTrialWithPdaExpectedError) {
   std::string line;
   ASSERT_TRUE(std::getline(lines, line));
   EXPECT_EQ(line,
-            "case,level_deg,level_m,seed,method,eq22_error_m,time_ms,converged,expected_error_m");
+            "case,level_deg,level_m,seed,method,eq22_error_m,time_ms,converged,expected_error_m,"
+            "nu,sigma_m,support_fraction,roles_swapped,local_start,search_widened");
   int pda_rows = 0, icp_rows = 0;
   while (std::getline(lines, line)) {
     const std::vector<std::string> cells = csvCells(line);
-    ASSERT_EQ(cells.size(), 9u) << line;
+    ASSERT_EQ(cells.size(), 15u) << line;
     EXPECT_EQ(cells[0], "room_scan");
     if (cells[4] == "pda") {
       ++pda_rows;
@@ -73,15 +74,52 @@ TEST(PdaBenchmark, WritesEveryTrialWithPdaExpectedError) {
       const double expected = std::stod(cells[8]);
       EXPECT_GT(expected, 0.001) << line;
       EXPECT_LT(expected, 0.05) << line;
+      // Its own reading: nu within its bounds, sigma of the room's centimetre, the support above
+      // the verdict's 10 %, answered by the first direction.
+      EXPECT_GE(std::stod(cells[9]), 1.0) << line;
+      EXPECT_GT(std::stod(cells[10]), 0.001) << line;
+      EXPECT_LT(std::stod(cells[10]), 0.05) << line;
+      EXPECT_GE(std::stod(cells[11]), 0.1) << line;
+      EXPECT_LE(std::stod(cells[11]), 1.0) << line;
+      EXPECT_EQ(cells[12] + cells[13] + cells[14], "000") << line;
     } else {
       ++icp_rows;
       EXPECT_EQ(cells[4], "icp");
-      EXPECT_TRUE(cells[8].empty()) << "PCL's methods have no covariance: " << line;
+      for (size_t c = 8; c < cells.size(); ++c) {
+        EXPECT_TRUE(cells[c].empty()) << "PCL's methods have no covariance nor verdict: " << line;
+      }
     }
   }
   EXPECT_EQ(pda_rows, 2);
   EXPECT_EQ(icp_rows, 2);
   EXPECT_NE(run.out.find(missesLine("0.05", 0, 0, 0, 0, 2)), std::string::npos) << run.out;
+}
+
+// The room reversed (its dense cloud as the source of the 16-row scan): the usual direction does
+// not come to a fit, and the other direction answers; the CSV says so on each row.
+TEST(PdaBenchmark, SaysWhichAttemptAnswered) {
+  const std::string csv = temporaryPath("benchmark_room_reversed.csv");
+  const CommandRun run = runCommand(PDA_BENCHMARK_BINARY,
+                                    "--data " + testing_support::sharedDataDirectory() +
+                                        " --cases room_scan --reverse --levels 5:0.25 --trials 2"
+                                        " --methods pda --csv " +
+                                        csv);
+  ASSERT_EQ(run.exit_code, 0) << run.err;
+  std::stringstream lines(readFile(csv));
+  std::string line;
+  ASSERT_TRUE(std::getline(lines, line));
+  int rows = 0;
+  while (std::getline(lines, line)) {
+    const std::vector<std::string> cells = csvCells(line);
+    ASSERT_EQ(cells.size(), 15u) << line;
+    ++rows;
+    EXPECT_EQ(cells[0], "room_scan:reversed");
+    EXPECT_LT(std::stod(cells[5]), 0.05) << line;
+    EXPECT_EQ(cells[7], "1") << line;
+    EXPECT_EQ(cells[12], "1") << "roles_swapped: " << line;
+    EXPECT_EQ(cells[13] + cells[14], "00") << line;
+  }
+  EXPECT_EQ(rows, 2);
 }
 
 // With a 1-mm threshold the room's 2-cm answers are misses, reported converged; the covariance

@@ -58,6 +58,11 @@ struct Trial {
   bool converged;
   /// PDA's covariance: the translation error it expects (1 sigma) [m]; NaN for PCL's methods.
   double expected_error;
+  /// PDA's own reading of its answer (registration_result.hpp), for a user who asks which of
+  /// its answers rest where: written for PDA's rows only.
+  bool pda_fields = false;
+  double nu = 0.0, sigma = 0.0, support_fraction = 0.0;
+  bool roles_swapped = false, local_start = false, search_widened = false;
 };
 
 int fail(const std::string& message) { return reportError("pda_benchmark", message); }
@@ -167,9 +172,11 @@ int main(int argc, char** argv) {
               runMethod(method == "pda_single" ? "pda" : method, target, source, initial, s);
           const double expected = o.pda_fields ? expectedError(o.result.covariance).translation
                                                : std::numeric_limits<double>::quiet_NaN();
+          const RegistrationResult& r = o.result;
           all.push_back({name, method, level, seed,
-                         poseError(source, o.result.T_target_source, truth).mean_distance,
-                         o.result.time_ms, o.result.converged, expected});
+                         poseError(source, r.T_target_source, truth).mean_distance, r.time_ms,
+                         r.converged, expected, o.pda_fields, r.nu, r.sigma, r.support_fraction,
+                         r.roles_swapped, r.local_start, r.search_widened});
           std::cerr << "\r" << name << " " << level.degrees << "deg/" << level.metres << "m trial "
                     << t + 1 << "/" << trials << " " << method << "          " << std::flush;
         }
@@ -180,12 +187,18 @@ int main(int argc, char** argv) {
 
   if (cl.has("csv")) {
     std::ofstream csv(cl.text("csv"));
-    csv << "case,level_deg,level_m,seed,method,eq22_error_m,time_ms,converged,expected_error_m\n";
+    csv << "case,level_deg,level_m,seed,method,eq22_error_m,time_ms,converged,expected_error_m,"
+           "nu,sigma_m,support_fraction,roles_swapped,local_start,search_widened\n";
     for (const Trial& t : all) {
       csv << t.case_name << ',' << t.level.degrees << ',' << t.level.metres << ',' << t.seed << ','
           << t.method << ',' << t.error << ',' << t.time_ms << ',' << t.converged << ',';
       if (std::isfinite(t.expected_error)) csv << t.expected_error;
-      csv << '\n';
+      if (t.pda_fields) {
+        csv << ',' << t.nu << ',' << t.sigma << ',' << t.support_fraction << ',' << t.roles_swapped
+            << ',' << t.local_start << ',' << t.search_widened << '\n';
+      } else {
+        csv << ",,,,,,\n";
+      }
     }
     if (!csv) return fail("--csv: cannot write '" + cl.text("csv") + "'");
   }
