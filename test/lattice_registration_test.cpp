@@ -10,8 +10,6 @@
 
 #include "pda_registration/core/pda_registration.hpp"
 #include "pda_registration/core/pose_covariance.hpp"
-#include "pda_registration/core/scan_line_scale.hpp"
-#include "pda_registration/core/surface_normals.hpp"
 #include "pda_registration/simulation/map_simulation.hpp"
 #include "test_support/simulated_cases.hpp"
 
@@ -152,42 +150,6 @@ TEST(LatticeCase, DefaultsRecoverTheVlp16LatticeInsteadOfFittingTheLaserCones) {
       EXPECT_GT(result.sigma, 1e-3) << "sigma collapsed below the simulated noise";
     }
   }
-}
-
-TEST(SurfaceNormals, ANoiseThickenedScanLineIsNotASurfaceButAPlaneIs) {
-  PointList line, plane;
-  for (int i = 0; i < 1000; ++i) {
-    // One scan line: 1 cm steps along x, +-1.5 cm of range noise across it, on the ground.
-    line.emplace_back(0.01 * i, 0.015 * std::sin(1.7 * i), 0.0);
-  }
-  for (int i = 0; i < 100; ++i) {
-    for (int j = 0; j < 100; ++j) plane.emplace_back(0.01 * i, 0.01 * j, 0.0);
-  }
-  const SurfaceNormalMap line_map(line, 0.15);
-  const SurfaceNormalMap plane_map(plane, 0.15);
-  EXPECT_EQ(line_map.voxelsWithNormal(), 0u);
-  EXPECT_EQ(line_map.normalAt(Point(5.0, 0.0, 0.0)).norm(), 0.0);
-  EXPECT_NEAR(std::abs(plane_map.normalAt(Point(0.5, 0.5, 0.0)).z()), 1.0, 1e-6);
-}
-
-// A single lidar revolution is dense along its rings and sparse across them; the normal map's
-// finest voxel is raised to the gap between the rings (scan_line_scale.hpp).
-TEST(ScanLineScale, IsTheGapBetweenScanLinesNotTheSpacingAlongThem) {
-  PointList lines, plane;
-  for (int line = 0; line < 10; ++line) {
-    for (int i = 0; i < 400; ++i) lines.emplace_back(0.01 * i, 0.3 * line, 0.0);  // 30 cm apart
-  }
-  for (int i = 0; i < 200; ++i) {
-    for (int j = 0; j < 200; ++j) plane.emplace_back(0.01 * i, 0.01 * j, 0.0);
-  }
-  const double line_scale = scanLineScale(TargetIndex(lines));
-  EXPECT_GT(line_scale, 0.29);
-  EXPECT_LT(line_scale, 0.45);
-  EXPECT_LT(scanLineScale(TargetIndex(plane)), 0.05);  // a few 1-cm spacings
-  // A length measured on the data: the same scene at a tenth of the size has a tenth of it.
-  PointList small = lines;
-  for (Point& p : small) p *= 0.1;
-  EXPECT_NEAR(scanLineScale(TargetIndex(small)), 0.1 * line_scale, 1e-9);
 }
 
 // Two single VLP-16 revolutions 3 m and 31 deg apart (scripts/benchmark_scan_pairs' scan_* rows):

@@ -37,6 +37,12 @@ catkin_add_gtest(lattice_registration_test lattice_registration_test.cpp)
 target_compile_options(lattice_registration_test PRIVATE ${PDA_WARNINGS})
 target_link_libraries(lattice_registration_test pda_simulated_cases gtest_main)
 
+# Scan lines are not surfaces: the normal map on noise-thickened rings, the scan-line scale, and
+# the same-sensor VLP-16 office it kept one ring off.
+catkin_add_gtest(scan_lines_test scan_lines_test.cpp)
+target_compile_options(scan_lines_test PRIVATE ${PDA_WARNINGS})
+target_link_libraries(scan_lines_test pda_simulated_cases gtest_main)
+
 # The ground truth of a warped dense map: the best rigid fit of the warp over the overlap.
 catkin_add_gtest(warp_rigid_fit_test warp_rigid_fit_test.cpp)
 target_compile_options(warp_rigid_fit_test PRIVATE ${PDA_WARNINGS})

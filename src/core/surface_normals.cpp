@@ -175,6 +175,16 @@ Eigen::Vector3d SurfaceNormalMap::normalAt(const Point& p, Memo* memo) const {
   Point scaled = p * (1.0 / levels_[0].voxel_size);
   const Cell finest{cellFloor(scaled.x()), cellFloor(scaled.y()), cellFloor(scaled.z())};
   if (memo && memo->version == version_ && memo->cell == finest) return memo->normal;
+  // The normal of p's voxel on level l, zero where it is not planar.
+  const auto levelNormal = [this](size_t l, const Cell& cell) -> Eigen::Vector3d {
+    const FlatLevel& flat = lookup_[l];
+    const uint64_t key = voxelCellKey(cell);
+    const size_t mask = flat.keys.size() - 1;
+    for (size_t slot = slotOf(key, flat.shift); flat.keys[slot] != 0; slot = (slot + 1) & mask) {
+      if (flat.keys[slot] == key + 1) return flat.normals[slot].cast<double>();
+    }
+    return Eigen::Vector3d::Zero();
+  };
   Eigen::Vector3d normal = Eigen::Vector3d::Zero();
   Cell cell = finest;
   for (size_t l = 0; l < lookup_.size(); ++l) {
@@ -182,18 +192,18 @@ Eigen::Vector3d SurfaceNormalMap::normalAt(const Point& p, Memo* memo) const {
       scaled *= 0.5;
       cell = {cellFloor(scaled.x()), cellFloor(scaled.y()), cellFloor(scaled.z())};
     }
-    const FlatLevel& flat = lookup_[l];
-    const uint64_t key = voxelCellKey(cell);
-    const size_t mask = flat.keys.size() - 1;
-    bool found = false;
-    for (size_t slot = slotOf(key, flat.shift); flat.keys[slot] != 0; slot = (slot + 1) & mask) {
-      if (flat.keys[slot] == key + 1) {
-        normal = flat.normals[slot].cast<double>();
-        found = true;
-        break;
+    normal = levelNormal(l, cell);
+    if (normal.squaredNorm() == 0.0) continue;
+    // Its parent, planar and steeply tilted from it, holds the surface (see the header).
+    if (l + 1 < lookup_.size()) {
+      scaled *= 0.5;
+      const Cell parent{cellFloor(scaled.x()), cellFloor(scaled.y()), cellFloor(scaled.z())};
+      const Eigen::Vector3d coarser = levelNormal(l + 1, parent);
+      if (coarser.squaredNorm() > 0.0 && std::abs(coarser.dot(normal)) < kParentAgreement) {
+        normal = coarser;
       }
     }
-    if (found) break;
+    break;
   }
   if (memo) *memo = {version_, finest, normal};
   return normal;

@@ -27,6 +27,9 @@ class SurfaceNormalMap {
   /// least this fraction of the first (an extent ratio of about 1:3). Shared with the target's
   /// scan-line scale (scan_line_scale.hpp), which asks the same question of a neighbourhood.
   static constexpr double kTwoDimensionalSpread = 0.1;
+  /// A planar voxel's normal stands unless its parent (twice the size) is planar too and tilted
+  /// from it by more than 45 degrees (|cos| below this): see normalAt.
+  static constexpr double kParentAgreement = 0.70710678118654752;
 
   SurfaceNormalMap() = default;
   /// finest_voxel_size <= 0 builds an empty map (every lookup says "no normal").
@@ -36,7 +39,12 @@ class SurfaceNormalMap {
   void add(const PointList& points, size_t from);
 
   /// The unit normal at p from the finest level whose voxel around p is planar; zero when no
-  /// level has one (empty space, a line, a blob, or fewer than 5 points).
+  /// level has one (empty space, a line, a blob, or fewer than 5 points). Where the next coarser
+  /// voxel is planar too and its normal is more than 45 degrees from that one's, the coarser
+  /// normal: a single lidar ring thickened by range noise (2 cm on a VLP-16, in a 15-cm voxel at
+  /// 5 m) spreads enough to pass as planar, and its plane is the laser's cone, which meets the
+  /// wall steeply; the coarser voxel holds several rings and the wall. A real detail the finer
+  /// voxel sees (an edge, a step) leaves its coarser voxel mixed, not planar, and stands.
   Eigen::Vector3d normalAt(const Point& p) const { return normalAt(p, nullptr); }
 
   /// A lookup's answer kept for the next question about a point that moved a little (a source
