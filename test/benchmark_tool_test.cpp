@@ -59,11 +59,12 @@ TEST(PdaBenchmark, WritesEveryTrialWithPdaExpectedError) {
   ASSERT_TRUE(std::getline(lines, line));
   EXPECT_EQ(line,
             "case,level_deg,level_m,seed,method,eq22_error_m,time_ms,converged,expected_error_m,"
-            "nu,sigma_m,support_fraction,roles_swapped,local_start,search_widened");
+            "nu,sigma_m,support_fraction,roles_swapped,local_start,search_widened,"
+            "competing_prominence");
   int pda_rows = 0, icp_rows = 0;
   while (std::getline(lines, line)) {
     const std::vector<std::string> cells = csvCells(line);
-    ASSERT_EQ(cells.size(), 15u) << line;
+    ASSERT_EQ(cells.size(), 16u) << line;
     EXPECT_EQ(cells[0], "room_scan");
     if (cells[4] == "pda") {
       ++pda_rows;
@@ -82,6 +83,9 @@ TEST(PdaBenchmark, WritesEveryTrialWithPdaExpectedError) {
       EXPECT_GE(std::stod(cells[11]), 0.1) << line;
       EXPECT_LE(std::stod(cells[11]), 1.0) << line;
       EXPECT_EQ(cells[12] + cells[13] + cells[14], "000") << line;
+      // No second pose as prominent as half the estimate's: none in the room from 5 deg.
+      EXPECT_GE(std::stod(cells[15]), 0.0) << line;
+      EXPECT_LT(std::stod(cells[15]), 0.5) << line;
     } else {
       ++icp_rows;
       EXPECT_EQ(cells[4], "icp");
@@ -111,7 +115,7 @@ TEST(PdaBenchmark, SaysWhichAttemptAnswered) {
   int rows = 0;
   while (std::getline(lines, line)) {
     const std::vector<std::string> cells = csvCells(line);
-    ASSERT_EQ(cells.size(), 15u) << line;
+    ASSERT_EQ(cells.size(), 16u) << line;
     ++rows;
     EXPECT_EQ(cells[0], "room_scan:reversed");
     EXPECT_LT(std::stod(cells[5]), 0.05) << line;

@@ -117,12 +117,58 @@ TEST(CompetingShift, NoneWhereTheCountsClimbIntoClutterThatFitsEveryShift) {
   EXPECT_NEAR(found.shift.x(), 0.7, 0.035);
 }
 
+// Which points a fixed stride picks must not decide: a repeat wall 0.5 m behind that holds only
+// some of the 861 source points' counterparts (the rest see nothing within the search radius
+// there). Where the first count's points read a competitor within two standard errors of the
+// threshold, more points decide: picked points that fit 60 % against 8 % of all of them is no
+// competitor, 40 % against 92 % is one.
+TEST(CompetingShift, ADecisionNearItsThresholdIsCountedOnMorePointsNotLeftToAStridesPick) {
+  CompetingShiftSettings settings = wallSettings();
+  settings.search_radius = 0.05;  // half the source's spacing: only a counterpart is found
+  for (const bool picked_mostly : {true, false}) {
+    WallCase c = wallCase(0.0);
+    const size_t n = c.source.size();
+    ASSERT_GT(n, 4 * settings.first_count_points);
+    ASSERT_LE(n, settings.recount_points);
+    // The first count's stride: the smallest power of two that leaves at most 128 points.
+    size_t stride = 1;
+    while (stride * settings.first_count_points < n) stride *= 2;
+    size_t picked = 0, fitting = 0;
+    for (size_t j = 0; j < n; ++j) {
+      const bool is_picked = j % stride == 0;
+      // Of the picked points every fifth three (60 %) or two (40 %); of the others none or all.
+      const bool counterpart = is_picked ? (picked++ % 5) < (picked_mostly ? 3u : 2u)
+                                         : !picked_mostly;
+      if (!counterpart) continue;
+      c.target.push_back(c.source[j] + Point(0.5, 0.0, 0.0));
+      ++fitting;
+    }
+    TargetIndex index(c.target);
+    const CompetingShift probed = findCompetingShift(
+        c.source, c.normals, Eigen::Isometry3d::Identity(), index, weakAlongX(), settings);
+    const double share_of_all = static_cast<double>(fitting) / static_cast<double>(n);
+    if (picked_mostly) {
+      ASSERT_LT(share_of_all, 0.15);
+      EXPECT_FALSE(probed.found()) << "a competitor at " << probed.shift.x() << " m";
+      EXPECT_LT(probed.relative_prominence, 0.4);
+    } else {
+      ASSERT_GT(share_of_all, 0.85);
+      ASSERT_TRUE(probed.found());
+      EXPECT_NEAR(probed.shift.x(), 0.5, 0.025);
+      EXPECT_GT(probed.relative_prominence, 0.6);
+    }
+    EXPECT_NEAR(probed.peak_shift.x(), 0.5, 0.025);
+  }
+}
+
 // The car park on another day (pda_simulate --seed 6 --scene outdoor --scene-changes 0.6; see
 // lattice_registration_test's ACarParkOnAnotherDay... for the spread budget that aligns it): with
 // the defaults the estimate rests 28.8 cm along the road, on the re-parked cars' peak, and the
-// curvature there said 2.1 cm (13.8x too confident). The probe finds the truth's peak and the
-// covariance holds it: the bound, sigma never 3x smaller than the error.
-TEST(CompetingShift, ACarParkOnAnotherDayReportsTheOtherPeakItMightBeOn) {
+// curvature there says 2.1 cm (13.8x too confident). The probe finds the truth's peak where the
+// error lies, but on all 1,555 facing points it stands 0.46 as prominent as the estimate's, below
+// the competitor's 0.5: the covariance does not hold it. (Until the recount, one stride's pick of
+// 128 points read 0.61 and held it: chance, not a measurement.)
+TEST(CompetingShift, ACarParkOnAnotherDayShowsTheTruthsPeakBelowTheCompetitorsThreshold) {
   simulation::MapSimulationOptions options =
       testing_support::carParkOptions(simulation::DenseSensor::kLidar64, false);
   options.seed = 6;
@@ -135,9 +181,9 @@ TEST(CompetingShift, ACarParkOnAnotherDayReportsTheOtherPeakItMightBeOn) {
         result.T_target_source.translation() - maps.T_target_source.translation();
     ASSERT_GT(t_error.norm(), 0.1) << "the slide this test is about is gone: perturbation seed "
                                    << seed << " lands " << t_error.norm() << " m off";
-    EXPECT_LT(t_error.norm(), 3.0 * expectedError(result.covariance).translation)
-        << "perturbation seed " << seed;
-    EXPECT_NEAR(result.competing_shift, t_error.norm(), 0.05) << "perturbation seed " << seed;
+    EXPECT_GT(result.competing_prominence, 0.35) << "perturbation seed " << seed;
+    EXPECT_LT(result.competing_prominence, 0.5) << "perturbation seed " << seed;
+    EXPECT_EQ(result.competing_shift, 0.0) << "perturbation seed " << seed;
   }
 }
 

@@ -213,9 +213,12 @@ TEST(PdaAlign, AlignsARealCaseAndReportsErrorsAgainstGroundTruth) {
   EXPECT_NE(run.out.find("\"converged\":true"), std::string::npos);
   for (const char* key :
        {"time_ms", "runs", "sigma", "inlier_fraction", "support_fraction", "mean_distance",
-        "rot_err_deg", "trans_err_m", "peak_rss_mb", "expected_error_m", "expected_error_deg"}) {
+        "rot_err_deg", "trans_err_m", "peak_rss_mb", "expected_error_m", "expected_error_deg",
+        "competing_prominence"}) {
     EXPECT_FALSE(std::isnan(jsonNumber(run.out, key))) << key << " missing in " << run.out;
   }
+  // No second pose half as prominent as the estimate's in the room (0.5: a competing pose).
+  EXPECT_LT(jsonNumber(run.out, "competing_prominence"), 0.5);
   // The covariance's expected error: positive, and of the size of the errors made (room_scan's
   // ground truth is good to ~1 cm / 0.5 deg).
   EXPECT_GT(jsonNumber(run.out, "expected_error_m"), 1e-4);

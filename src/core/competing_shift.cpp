@@ -8,9 +8,8 @@
 namespace pda_registration {
 namespace {
 
-// At most this many probe points, taken at a fixed stride: a count of 100 errs by about 10, and
-// the probe costs at most 128 x 49 searches.
-constexpr size_t kMaxProbePoints = 128;
+// A competitor at least this prominent, relative to the estimate's peak above the same col.
+constexpr double kMinRelativeProminence = 0.5;
 // At most this many shifts on either side; otherwise the step is half the inlier distance, so
 // that a surface's window of fitting shifts (at least twice the inlier distance wide) holds at
 // least four of them (two at the coarsest step, on a car park whose sigma is 1.3 cm).
@@ -73,6 +72,83 @@ size_t ownPeak(const std::vector<size_t>& ahead, const std::vector<size_t>& behi
   return peak;
 }
 
+
+// How many probe points fit within the inlier distance at each shift along u: ahead[k] at
+// +k step, behind[k] at -k step (ahead[0] = behind[0]: the estimate itself).
+struct FitProfile {
+  std::vector<size_t> ahead, behind;
+};
+
+struct FitCounter {
+  const PointList& source;
+  const PointList& normals;
+  const Eigen::Isometry3d& T;
+  const TargetIndex& index;
+  Eigen::Vector3d u;
+  const CompetingShiftSettings& settings;
+  double step;
+  int steps;
+
+  // Adds the counts of the facing points f with f % stride == 0, but not those already counted
+  // at `counted_stride` (0: none).
+  void add(const std::vector<size_t>& facing, size_t stride, size_t counted_stride,
+           FitProfile* profile) const {
+    for (size_t f = 0; f < facing.size(); f += stride) {
+      if (counted_stride != 0 && f % counted_stride == 0) continue;
+      const size_t j = facing[f];
+      const Point moved = T * source[j];
+      for (int side = 0; side < 2; ++side) {
+        std::vector<size_t>& counts = side == 0 ? profile->ahead : profile->behind;
+        size_t hint = 0, hints = 0;
+        for (int k = side; k <= steps; ++k) {  // the estimate itself counted once, ahead
+          const Point query = moved + (side == 0 ? k : -k) * step * u;
+          size_t nearest = 0;
+          double squared_distance = 0.0;
+          if (index.nearestWithinRadius(query, 1, settings.search_radius, &nearest,
+                                        &squared_distance, &hint, hints) == 0) {
+            continue;
+          }
+          hint = nearest, hints = 1;
+          if (std::abs(normals[j].dot(query - index.points()[nearest])) <
+              settings.inlier_distance) {
+            ++counts[k];
+          }
+        }
+      }
+    }
+    profile->behind[0] = profile->ahead[0];
+  }
+};
+
+// The most prominent peak beyond the estimate's, on either side.
+struct Competitor {
+  SidePeak peak;
+  bool forward = true;
+  size_t own = 0;  ///< the estimate's peak count
+  // Whether the counts leave rise >= threshold x own rise within two standard errors of either
+  // answer. Each count is taken as Poisson (a difference of two counts has the sum of their
+  // variances; the counts share points, so this errs on the side of counting again).
+  bool undecided() const {
+    if (!(peak.rise > 0.0)) return false;  // no peak beyond the estimate's
+    const double col = static_cast<double>(own) - peak.own_rise;
+    const double margin = peak.rise - kMinRelativeProminence * peak.own_rise;
+    const double rise_variance = (col + peak.rise) + col;
+    const double own_rise_variance = static_cast<double>(own) + col;
+    const double variance = rise_variance + std::pow(kMinRelativeProminence, 2) * own_rise_variance;
+    return margin * margin < 4.0 * variance;
+  }
+};
+
+Competitor strongestCompetitor(const FitProfile& profile) {
+  Competitor best;
+  best.own = ownPeak(profile.ahead, profile.behind);
+  const SidePeak forward = mostProminentBeyond(profile.ahead, best.own);
+  const SidePeak backward = mostProminentBeyond(profile.behind, best.own);
+  best.forward = forward.relative() >= backward.relative();
+  best.peak = best.forward ? forward : backward;
+  return best;
+}
+
 }  // namespace
 
 CompetingShift findCompetingShift(const PointList& source, const PointList& normals,
@@ -81,7 +157,8 @@ CompetingShift findCompetingShift(const PointList& source, const PointList& norm
                                   const CompetingShiftSettings& settings) {
   CompetingShift none;
   if (!(settings.inlier_distance > 0.0) || !(settings.reach > 0.0) ||
-      !(settings.search_radius > 0.0) || normals.size() != source.size() ||
+      !(settings.search_radius > 0.0) || settings.first_count_points == 0 ||
+      settings.recount_points == 0 || normals.size() != source.size() ||
       !translation_covariance.allFinite()) {
     return none;
   }
@@ -95,47 +172,29 @@ CompetingShift findCompetingShift(const PointList& source, const PointList& norm
   }
   none.probe_points = facing.size();
   if (facing.size() < kMinProbePoints) return none;
-  const size_t stride = (facing.size() + kMaxProbePoints - 1) / kMaxProbePoints;
-
   const double step = std::max(0.5 * settings.inlier_distance, settings.reach / kMaxStepsPerSide);
   const int steps = static_cast<int>(std::floor(settings.reach / step));
-  // counts[0]: shifts 0, +step, +2 step, ...; counts[1]: 0, -step, -2 step, ...
-  std::vector<size_t> counts[2] = {std::vector<size_t>(steps + 1, 0),
-                                   std::vector<size_t>(steps + 1, 0)};
-  for (size_t f = 0; f < facing.size(); f += stride) {
-    const size_t j = facing[f];
-    const Point moved = T * source[j];
-    const Eigen::Vector3d& n = normals[j];
-    for (int side = 0; side < 2; ++side) {
-      size_t hint = 0, hints = 0;
-      for (int k = side; k <= steps; ++k) {  // the estimate itself counted once, on side 0
-        const Point query = moved + (side == 0 ? k : -k) * step * u;
-        size_t nearest = 0;
-        double squared_distance = 0.0;
-        if (index.nearestWithinRadius(query, 1, settings.search_radius, &nearest,
-                                      &squared_distance, &hint, hints) == 0) {
-          continue;
-        }
-        hint = nearest, hints = 1;
-        if (std::abs(n.dot(query - index.points()[nearest])) < settings.inlier_distance) {
-          ++counts[side][k];
-        }
-      }
-    }
+  const FitCounter counter{source, normals, T, index, u, settings, step, steps};
+  // A power of two, so that each recount at half the stride adds the points between.
+  size_t stride = 1;
+  while (stride * settings.first_count_points < facing.size()) stride *= 2;
+  FitProfile profile{std::vector<size_t>(steps + 1, 0), std::vector<size_t>(steps + 1, 0)};
+  counter.add(facing, stride, 0, &profile);
+  Competitor best = strongestCompetitor(profile);
+  while (best.undecided() && stride > 1 &&
+         (facing.size() + stride / 2 - 1) / (stride / 2) <= settings.recount_points) {
+    counter.add(facing, stride / 2, stride, &profile);
+    stride /= 2;
+    best = strongestCompetitor(profile);
   }
-  counts[1][0] = counts[0][0];
-  const size_t own = ownPeak(counts[0], counts[1]);
-  const SidePeak forward = mostProminentBeyond(counts[0], own);
-  const SidePeak backward = mostProminentBeyond(counts[1], own);
-  const bool forward_wins = forward.relative() >= backward.relative();
-  const SidePeak& best = forward_wins ? forward : backward;
   CompetingShift result = none;
-  // A peak at least half as prominent as the estimate's above the dip between them.
-  if (!(best.relative() >= 0.5)) return result;
-  result.estimate_support = best.own_rise;
-  result.competitor_support = best.rise;
-  result.shift = (forward_wins ? 1.0 : -1.0) * static_cast<double>(best.step) * step * u;
-  result.share = best.rise / (best.rise + best.own_rise);
+  result.relative_prominence = best.peak.relative();
+  result.peak_shift = (best.forward ? 1.0 : -1.0) * static_cast<double>(best.peak.step) * step * u;
+  if (!(best.peak.relative() >= kMinRelativeProminence)) return result;
+  result.shift = result.peak_shift;
+  result.estimate_support = best.peak.own_rise;
+  result.competitor_support = best.peak.rise;
+  result.share = best.peak.rise / (best.peak.rise + best.peak.own_rise);
   return result;
 }
 

@@ -130,6 +130,7 @@ void fillFinalStatistics(const PointList& source, const TargetIndex& index,
   result->covariance = withCompetingShift(result->covariance, competitor);
   result->competing_shift = competitor.shift.norm();
   result->competing_share = competitor.share;
+  result->competing_prominence = competitor.relative_prominence;
   result->covariance_ms =
       std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - covariance_start)
           .count();

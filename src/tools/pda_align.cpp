@@ -154,6 +154,7 @@ int main(int argc, char** argv) {
     json.add("expected_error_m", expected.translation)
         .add("expected_error_deg", expected.rotation * 180.0 / M_PI);
     json.add("competing_shift_m", r.competing_shift).add("competing_share", r.competing_share);
+    json.add("competing_prominence", r.competing_prominence);
     json.add("covariance_ms", r.covariance_ms);
   } else {
     json.addRaw("runs", "null")

@@ -63,6 +63,7 @@ struct Trial {
   bool pda_fields = false;
   double nu = 0.0, sigma = 0.0, support_fraction = 0.0;
   bool roles_swapped = false, local_start = false, search_widened = false;
+  double competing_prominence = 0.0;
 };
 
 int fail(const std::string& message) { return reportError("pda_benchmark", message); }
@@ -176,7 +177,7 @@ int main(int argc, char** argv) {
           all.push_back({name, method, level, seed,
                          poseError(source, r.T_target_source, truth).mean_distance, r.time_ms,
                          r.converged, expected, o.pda_fields, r.nu, r.sigma, r.support_fraction,
-                         r.roles_swapped, r.local_start, r.search_widened});
+                         r.roles_swapped, r.local_start, r.search_widened, r.competing_prominence});
           std::cerr << "\r" << name << " " << level.degrees << "deg/" << level.metres << "m trial "
                     << t + 1 << "/" << trials << " " << method << "          " << std::flush;
         }
@@ -188,16 +189,17 @@ int main(int argc, char** argv) {
   if (cl.has("csv")) {
     std::ofstream csv(cl.text("csv"));
     csv << "case,level_deg,level_m,seed,method,eq22_error_m,time_ms,converged,expected_error_m,"
-           "nu,sigma_m,support_fraction,roles_swapped,local_start,search_widened\n";
+           "nu,sigma_m,support_fraction,roles_swapped,local_start,search_widened,competing_prominence\n";
     for (const Trial& t : all) {
       csv << t.case_name << ',' << t.level.degrees << ',' << t.level.metres << ',' << t.seed << ','
           << t.method << ',' << t.error << ',' << t.time_ms << ',' << t.converged << ',';
       if (std::isfinite(t.expected_error)) csv << t.expected_error;
       if (t.pda_fields) {
         csv << ',' << t.nu << ',' << t.sigma << ',' << t.support_fraction << ',' << t.roles_swapped
-            << ',' << t.local_start << ',' << t.search_widened << '\n';
+            << ',' << t.local_start << ',' << t.search_widened << ',' << t.competing_prominence
+            << '\n';
       } else {
-        csv << ",,,,,,\n";
+        csv << ",,,,,,,\n";
       }
     }
     if (!csv) return fail("--csv: cannot write '" + cl.text("csv") + "'");

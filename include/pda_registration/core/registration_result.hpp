@@ -25,6 +25,9 @@ struct RegistrationResult {
   /// that direction nearly as well (competing_shift.hpp; 0: none): the covariance holds it
   double competing_shift = 0.0;
   double competing_share = 0.0;  ///< that pose's share of the two poses' support (0: none)
+  /// The most prominent peak beyond the estimate's, found or not: its rise relative to the
+  /// estimate's (a competing pose from 0.5; 0: no peak). How near the flag an answer stands.
+  double competing_prominence = 0.0;
 
   bool converged = false;
   std::string reason;  ///< why not converged (empty when converged)
