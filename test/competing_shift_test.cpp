@@ -137,8 +137,8 @@ TEST(CompetingShift, ADecisionNearItsThresholdIsCountedOnMorePointsNotLeftToAStr
     for (size_t j = 0; j < n; ++j) {
       const bool is_picked = j % stride == 0;
       // Of the picked points every fifth three (60 %) or two (40 %); of the others none or all.
-      const bool counterpart = is_picked ? (picked++ % 5) < (picked_mostly ? 3u : 2u)
-                                         : !picked_mostly;
+      const bool counterpart =
+          is_picked ? (picked++ % 5) < (picked_mostly ? 3u : 2u) : !picked_mostly;
       if (!counterpart) continue;
       c.target.push_back(c.source[j] + Point(0.5, 0.0, 0.0));
       ++fitting;

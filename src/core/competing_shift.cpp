@@ -72,7 +72,6 @@ size_t ownPeak(const std::vector<size_t>& ahead, const std::vector<size_t>& behi
   return peak;
 }
 
-
 // How many probe points fit within the inlier distance at each shift along u: ahead[k] at
 // +k step, behind[k] at -k step (ahead[0] = behind[0]: the estimate itself).
 struct FitProfile {

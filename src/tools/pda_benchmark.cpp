@@ -189,7 +189,8 @@ int main(int argc, char** argv) {
   if (cl.has("csv")) {
     std::ofstream csv(cl.text("csv"));
     csv << "case,level_deg,level_m,seed,method,eq22_error_m,time_ms,converged,expected_error_m,"
-           "nu,sigma_m,support_fraction,roles_swapped,local_start,search_widened,competing_prominence\n";
+           "nu,sigma_m,support_fraction,roles_swapped,local_start,search_widened,"
+           "competing_prominence\n";
     for (const Trial& t : all) {
       csv << t.case_name << ',' << t.level.degrees << ',' << t.level.metres << ',' << t.seed << ','
           << t.method << ',' << t.error << ',' << t.time_ms << ',' << t.converged << ',';

@@ -42,8 +42,8 @@ namespace pda_registration {
 
 struct CompetingShift {
   Eigen::Vector3d shift = Eigen::Vector3d::Zero();  ///< [length] from the estimate (target frame)
-  double share = 0.0;             ///< the competitor's rise / (its rise + the estimate's)
-  size_t probe_points = 0;        ///< source points whose surface faces the probed direction
+  double share = 0.0;       ///< the competitor's rise / (its rise + the estimate's)
+  size_t probe_points = 0;  ///< source points whose surface faces the probed direction
   /// Probe points that fit within the inlier distance, counted above the dip between the two
   /// peaks: at the estimate's own peak, and at the competitor's (0: none found).
   double estimate_support = 0.0;
