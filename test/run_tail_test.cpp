@@ -76,8 +76,11 @@ TEST(RunTail, ResetForgetsTheStepBefore) {
 
 // room_scan's 16-row scan on its dense map thinned to 0.5 m: sigma is 0.15 m, and the refine
 // runs used to go on moving 0.2-0.9 mm (a thousandth of sigma) until a step fell below 0.1 mm.
-// The stage now ends on its tail: the last run still moves more than the epsilons, and the result
-// is as near the truth as before (1.65 cm; the ground truth is good to about 1 cm / 0.5 deg).
+// The stage now ends on its tail where one is left: over ten perturbations every result is as
+// near the truth as before (1.7 cm; the ground truth is good to about 1 cm / 0.5 deg), every last
+// run moves less than the negligible tail, and some end still moving more than the epsilons (4 of
+// 10 since the parent-voxel normals, whose refine runs settle faster: the rest fall below the
+// epsilons first).
 TEST(RunTail, TheThinnedRoomEndsItsRefineRunsOnTheTail) {
   testing_support::SharedCase c;
   std::string error;
@@ -89,17 +92,22 @@ TEST(RunTail, TheThinnedRoomEndsItsRefineRunsOnTheTail) {
   trace.run = [&runs](const RunRecord& r) { runs.push_back(r); };
   registration.setTrace(trace);
   ASSERT_TRUE(registration.setTarget(voxelDownsample(c.target, 0.5)));
-  const Eigen::Isometry3d initial = c.T_target_source * randomPerturbation(5.0, 0.25, 1);
-  const RegistrationResult r = registration.align(c.source, initial);
-  ASSERT_TRUE(r.converged) << r.reason;
-  const PoseError e = poseError(c.source, r.T_target_source, c.T_target_source);
-  EXPECT_LT(e.mean_distance, 0.03);
-  ASSERT_FALSE(runs.empty());
-  const RunRecord& last = runs.back();
-  EXPECT_EQ(std::string(last.stage), "refine");
-  EXPECT_GT(last.step_translation, p.translation_epsilon)
+  int ended_on_tail = 0;
+  for (uint64_t seed = 1; seed <= 10; ++seed) {
+    runs.clear();
+    const Eigen::Isometry3d initial = c.T_target_source * randomPerturbation(5.0, 0.25, seed);
+    const RegistrationResult r = registration.align(c.source, initial);
+    ASSERT_TRUE(r.converged) << "seed " << seed << ": " << r.reason;
+    const PoseError e = poseError(c.source, r.T_target_source, c.T_target_source);
+    EXPECT_LT(e.mean_distance, 0.03) << "seed " << seed;
+    ASSERT_FALSE(runs.empty());
+    const RunRecord& last = runs.back();
+    EXPECT_EQ(std::string(last.stage), "refine") << "seed " << seed;
+    EXPECT_LT(last.step_translation, kNegligibleTailSigmas * last.sigma) << "seed " << seed;
+    ended_on_tail += last.step_translation > p.translation_epsilon;
+  }
+  EXPECT_GE(ended_on_tail, 2)
       << "the refine runs ended on a step below the epsilons, not on their tail";
-  EXPECT_LT(last.step_translation, kNegligibleTailSigmas * last.sigma);
 }
 
 }  // namespace
