@@ -17,7 +17,8 @@
 // against 217).
 // The counts are taken on up to 128 probe points at a fixed stride; while they leave the decision
 // within two standard errors of its threshold, on twice as many, up to 1,024 (the car park above
-// read 0.61 on one stride's 128 points, 0.46 on another's and on all of its 1,555).
+// read 0.61 on one stride's 128 points, 0.46 on another's and on all of its 1,555: below the
+// threshold, so the probe sees the truth's peak there but the covariance does not hold it).
 // A peak beyond the estimate's own (which ends at the first count below half of its height) that
 // rises above its col by at least half as much as the estimate's peak does is a competing pose
 // the data do not rule out (prominence, not height: a cluttered room fits 40-50 % of the
