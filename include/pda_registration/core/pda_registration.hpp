@@ -147,7 +147,8 @@ class PdaRegistration {
   /// A failed result on a source denser than the target: the other way round, with what is left
   /// of the time limit, kept if that converges (alignment_direction.hpp). Runs only where the
   /// first attempt warranted it (`first_warranted_it`, computed once, before the local start); a
-  /// local start adopted since meets it, as in tryWiderSearch.
+  /// local start adopted since meets it, as in tryWiderSearch. An answer kept meets the second
+  /// starts, as the first attempt's does (trySecondStart).
   void tryOtherDirection(const PointList& source, const Eigen::Isometry3d& T_initial,
                          std::chrono::steady_clock::time_point started, bool first_warranted_it,
                          RegistrationResult* result, Associations* associations);
