@@ -51,6 +51,18 @@ const AttemptRecord* attemptNamed(const TracedAlignment& traced, const std::stri
   return nullptr;
 }
 
+// Whether an attempt named `name` ran and align() adopted it (`adopted`) or dropped it.
+::testing::AssertionResult ranAndWas(const TracedAlignment& traced, const std::string& name,
+                                     bool adopted) {
+  const AttemptRecord* a = attemptNamed(traced, name);
+  if (a == nullptr) return ::testing::AssertionFailure() << "no " << name << " ran";
+  if (a->adopted != adopted) {
+    return ::testing::AssertionFailure()
+           << "the " << name << " was " << (a->adopted ? "adopted" : "dropped") << ": " << a->reason;
+  }
+  return ::testing::AssertionSuccess();
+}
+
 int refineRunsAtTheFloor(const TracedAlignment& traced) {
   const RegistrationParameters p;
   return static_cast<int>(std::count_if(
@@ -68,13 +80,11 @@ TEST(EarlySecondStart, SupersedesAFalseRestOnceNuReachesItsFloor) {
   const SimulatedMaps maps = simulateMaps(rgbdFragmentOptions(5));
   const TracedAlignment traced = alignTraced(maps, 20.0, 1.0, 6);
 
+  EXPECT_TRUE(ranAndWas(traced, "first", /*adopted=*/false));
+  EXPECT_TRUE(ranAndWas(traced, "second start", /*adopted=*/true));
   const AttemptRecord* first = attemptNamed(traced, "first");
-  const AttemptRecord* second = attemptNamed(traced, "second start");
   ASSERT_NE(first, nullptr);
-  ASSERT_NE(second, nullptr);
-  EXPECT_FALSE(first->adopted);
   EXPECT_NE(first->reason.find("superseded"), std::string::npos) << first->reason;
-  EXPECT_TRUE(second->adopted);
   ASSERT_FALSE(traced.first_runs.empty());
   EXPECT_EQ(refineRunsAtTheFloor(traced), 1) << "the first attempt ran on past its floor";
   EXPECT_EQ(traced.first_runs.back().run, first->runs);
@@ -97,9 +107,7 @@ TEST(EarlySecondStart, KeepsTheTruthOverAFalseRestMeasuredWithOneYardstick) {
   const RegistrationResult& r = traced.result;
   ASSERT_TRUE(r.converged) << r.reason;
   EXPECT_LT(poseError(maps.sparse, r.T_target_source, maps.T_target_source).mean_distance, 0.03);
-  const AttemptRecord* second = attemptNamed(traced, "second start");
-  ASSERT_NE(second, nullptr);
-  EXPECT_TRUE(second->adopted);
+  EXPECT_TRUE(ranAndWas(traced, "second start", /*adopted=*/true));
 }
 
 // The RGB-D fragment pair of seed 4 from 20 deg / 1 m (perturbation 1): the first attempt ends
@@ -111,12 +119,8 @@ TEST(SecondStart, QuestionsTheOtherDirectionsAnswer) {
   const SimulatedMaps maps = simulateMaps(rgbdFragmentOptions(4));
   const TracedAlignment traced = alignTraced(maps, 20.0, 1.0, 1);
 
-  const AttemptRecord* other = attemptNamed(traced, "other direction");
-  const AttemptRecord* second = attemptNamed(traced, "second start");
-  ASSERT_NE(other, nullptr);
-  ASSERT_NE(second, nullptr);
-  EXPECT_TRUE(other->adopted);
-  EXPECT_TRUE(second->adopted);
+  EXPECT_TRUE(ranAndWas(traced, "other direction", /*adopted=*/true));
+  EXPECT_TRUE(ranAndWas(traced, "second start", /*adopted=*/true));
   const RegistrationResult& r = traced.result;
   ASSERT_TRUE(r.converged) << r.reason;
   EXPECT_FALSE(r.roles_swapped);
