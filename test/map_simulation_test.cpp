@@ -297,9 +297,7 @@ TEST(MapSimulation, FragmentsSharingAThirdAlignFromNearTheSeed) {
     uint64_t perturbation;
   };
   for (const Case& c : {Case{5, 2.0, 0.1, 1}, Case{3, 5.0, 0.25, 3}}) {
-    MapSimulationOptions options = testing_support::rgbdFragmentOptions(c.layout, 0.0);
-    options.fragment_length = 0.4;
-    const SimulatedMaps maps = simulateMaps(options);
+    const SimulatedMaps maps = simulateMaps(testing_support::lowOverlapFragmentOptions(c.layout));
     EXPECT_LT(overlapShare(maps), 0.36);
 
     PdaRegistration registration((RegistrationParameters()));

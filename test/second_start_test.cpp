@@ -12,56 +12,20 @@
 #include "pda_registration/core/degrees_of_freedom.hpp"
 #include "pda_registration/core/error_metrics.hpp"
 #include "pda_registration/core/pda_registration.hpp"
-#include "pda_registration/core/perturbation.hpp"
 #include "pda_registration/simulation/map_simulation.hpp"
 #include "test_support/simulated_cases.hpp"
+#include "test_support/traced_alignment.hpp"
 
 namespace pda_registration {
 namespace simulation {
 namespace {
 
+using testing_support::alignTraced;
+using testing_support::attemptNamed;
+using testing_support::lowOverlapFragmentOptions;
+using testing_support::ranAndWas;
 using testing_support::rgbdFragmentOptions;
-
-struct TracedAlignment {
-  std::vector<RunRecord> first_runs;
-  std::vector<AttemptRecord> attempts;
-  RegistrationResult result;
-};
-
-TracedAlignment alignTraced(const SimulatedMaps& maps, double degrees, double metres,
-                            uint64_t seed) {
-  TracedAlignment traced;
-  PdaRegistration registration((RegistrationParameters()));
-  AlignmentTrace trace;
-  trace.run = [&traced](const RunRecord& r) {
-    if (std::string(r.attempt) == "first") traced.first_runs.push_back(r);
-  };
-  trace.attempt = [&traced](const AttemptRecord& a) { traced.attempts.push_back(a); };
-  registration.setTrace(trace);
-  EXPECT_TRUE(registration.setTarget(maps.dense));
-  traced.result = registration.align(
-      maps.sparse, maps.T_target_source * randomPerturbation(degrees, metres, seed));
-  return traced;
-}
-
-const AttemptRecord* attemptNamed(const TracedAlignment& traced, const std::string& name) {
-  for (const AttemptRecord& a : traced.attempts) {
-    if (name == a.attempt) return &a;
-  }
-  return nullptr;
-}
-
-// Whether an attempt named `name` ran and align() adopted it (`adopted`) or dropped it.
-::testing::AssertionResult ranAndWas(const TracedAlignment& traced, const std::string& name,
-                                     bool adopted) {
-  const AttemptRecord* a = attemptNamed(traced, name);
-  if (a == nullptr) return ::testing::AssertionFailure() << "no " << name << " ran";
-  if (a->adopted != adopted) {
-    return ::testing::AssertionFailure()
-           << "the " << name << " was " << (a->adopted ? "adopted" : "dropped") << ": " << a->reason;
-  }
-  return ::testing::AssertionSuccess();
-}
+using testing_support::TracedAlignment;
 
 int refineRunsAtTheFloor(const TracedAlignment& traced) {
   const RegistrationParameters p;
@@ -100,9 +64,7 @@ TEST(EarlySecondStart, SupersedesAFalseRestOnceNuReachesItsFloor) {
 // 1.8 cm. Each measured with its own 3 sigma, the false rest fitted more of the overlap and the
 // truth was dropped (then 2.73 m); with one yardstick for both, the truth is kept.
 TEST(EarlySecondStart, KeepsTheTruthOverAFalseRestMeasuredWithOneYardstick) {
-  MapSimulationOptions options = rgbdFragmentOptions(3);
-  options.fragment_length = 0.4;
-  const SimulatedMaps maps = simulateMaps(options);
+  const SimulatedMaps maps = simulateMaps(lowOverlapFragmentOptions(3));
   const TracedAlignment traced = alignTraced(maps, 10.0, 0.5, 3);
   const RegistrationResult& r = traced.result;
   ASSERT_TRUE(r.converged) << r.reason;

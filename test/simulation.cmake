@@ -6,7 +6,8 @@ target_link_libraries(sensor_simulation_test pda_registration_simulation gtest_m
 
 # The simulated cases (a small office, the lidar car park) and one perturbed alignment, shared
 # by the simulation and registration tests.
-add_library(pda_simulated_cases STATIC test_support/simulated_cases.cpp)
+add_library(pda_simulated_cases STATIC test_support/simulated_cases.cpp
+  test_support/traced_alignment.cpp)
 target_compile_options(pda_simulated_cases PRIVATE ${PDA_WARNINGS})
 target_link_libraries(pda_simulated_cases pda_test_support pda_registration_simulation gtest)
 
@@ -73,3 +74,9 @@ target_link_libraries(competing_shift_test pda_simulated_cases gtest_main)
 catkin_add_gtest(second_start_test second_start_test.cpp)
 target_compile_options(second_start_test PRIVATE ${PDA_WARNINGS})
 target_link_libraries(second_start_test pda_simulated_cases gtest_main)
+
+# The near search where the usual answer is questionable: its radius, its verdict, RGB-D fragments
+# sharing a third of the scene.
+catkin_add_gtest(near_search_test near_search_test.cpp)
+target_compile_options(near_search_test PRIVATE ${PDA_WARNINGS})
+target_link_libraries(near_search_test pda_simulated_cases gtest_main)

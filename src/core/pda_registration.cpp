@@ -3,7 +3,8 @@
 // The engine's entry points: the target, the parameters, and align(), which runs the staged
 // alignment (staged_alignment.cpp) and, where its result calls for one, a second start
 // (second_start_attempts.cpp: also while the first pauses at nu's floor), a local start, the
-// other direction or a wider search.
+// other direction or a wider search; where that answer is questionable, all of it once more as a
+// near search (near_search_attempt.cpp).
 
 #include <chrono>
 #include <cmath>
@@ -83,36 +84,9 @@ RegistrationResult PdaRegistration::align(const PointList& source,
   const auto start = std::chrono::steady_clock::now();
   RegistrationResult result;
   try {
-    // A first attempt whose refine runs leave nu at its floor is questioned there by the second
-    // starts (second_start_attempts.cpp); otherwise they may follow its end.
-    EarlySecondStarts early;
-    const std::function<bool(const EmState&, const TargetIndex&)> at_nu_floor =
-        [&](const EmState& first, const TargetIndex& index) {
-          return secondStartsAtNuFloor(source, T_target_source_initial, start, first, index,
-                                       associations != nullptr, &early);
-        };
-    AttemptOptions first_attempt;
-    first_attempt.at_nu_floor = &at_nu_floor;
-    result = alignUnchecked(source, T_target_source_initial, associations, first_attempt);
-    traceAttempt(result, /*adopted=*/!early.adopted, start);
-    if (early.adopted) {
-      adoptNested(true, &early.adopted_result, &early.adopted_associations, &result, associations);
-    } else if (early.tried) {
-      settleEarlySecondStarts(T_target_source_initial, start, &early, &result, associations);
-    } else {
-      trySecondStart(source, T_target_source_initial, start, &result, associations);
-    }
-    // What the first result warrants, before a local start may stand in for it: from a seed far
-    // off the local start converges as readily on a false fit near it (local_start.hpp), so the
-    // fallbacks the first warranted still meet it, the better supported kept.
-    const bool other_direction_warranted =
-        otherDirectionWarranted(result, source, T_target_source_initial);
-    const bool wider_search_warranted = widerSearchWarranted(result, parameters_);
-    tryLocalStart(source, T_target_source_initial, start, &result, associations);
-    tryOtherDirection(source, T_target_source_initial, start, other_direction_warranted, &result,
-                      associations);
-    tryWiderSearch(source, T_target_source_initial, start, wider_search_warranted, &result,
-                   associations);
+    result = alignWithFallbacks(source, T_target_source_initial, start, associations);
+    // Where that answer is questionable, the whole of it once more, searching near (near_search.hpp).
+    tryNearSearch(source, T_target_source_initial, start, &result, associations);
   } catch (const std::exception& error) {
     if (associations) *associations = Associations();
     result = RegistrationResult();
@@ -124,8 +98,49 @@ RegistrationResult PdaRegistration::align(const PointList& source,
     result.T_target_source = T_target_source_initial;
     result.reason = "internal error: unknown exception";
   }
+  radius_follows_steps_ = false;
+  deferred_attempts_ = nullptr;
   result.time_ms =
       std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+  return result;
+}
+
+RegistrationResult PdaRegistration::alignWithFallbacks(const PointList& source,
+                                                       const Eigen::Isometry3d& T_initial,
+                                                       std::chrono::steady_clock::time_point start,
+                                                       Associations* associations,
+                                                       bool near_search) {
+  // A first attempt whose refine runs leave nu at its floor is questioned there by the second
+  // starts (second_start_attempts.cpp); otherwise they may follow its end.
+  EarlySecondStarts early;
+  const std::function<bool(const EmState&, const TargetIndex&)> at_nu_floor =
+      [&](const EmState& first, const TargetIndex& index) {
+        return secondStartsAtNuFloor(source, T_initial, start, first, index,
+                                     associations != nullptr, &early);
+      };
+  AttemptOptions first_attempt;
+  first_attempt.at_nu_floor = &at_nu_floor;
+  // A near search's first attempt, and the second starts it asks at nu's floor, search as far as
+  // their steps reach (near_search.hpp); the attempts after it, as usual.
+  radius_follows_steps_ = near_search;
+  RegistrationResult result = alignUnchecked(source, T_initial, associations, first_attempt);
+  radius_follows_steps_ = false;
+  traceAttempt(result, /*adopted=*/!early.adopted, start);
+  if (early.adopted) {
+    adoptNested(true, &early.adopted_result, &early.adopted_associations, &result, associations);
+  } else if (early.tried) {
+    settleEarlySecondStarts(T_initial, start, &early, &result, associations);
+  } else {
+    trySecondStart(source, T_initial, start, &result, associations);
+  }
+  // What the first result warrants, before a local start may stand in for it: from a seed far
+  // off the local start converges as readily on a false fit near it (local_start.hpp), so the
+  // fallbacks the first warranted still meet it, the better supported kept.
+  const bool other_direction_warranted = otherDirectionWarranted(result, source, T_initial);
+  const bool wider_search_warranted = widerSearchWarranted(result, parameters_);
+  tryLocalStart(source, T_initial, start, &result, associations);
+  tryOtherDirection(source, T_initial, start, other_direction_warranted, &result, associations);
+  tryWiderSearch(source, T_initial, start, wider_search_warranted, &result, associations);
   return result;
 }
 
@@ -140,7 +155,7 @@ void PdaRegistration::tryLocalStart(const PointList& source, const Eigen::Isomet
   if (first_converged ? !nested.timeLeft() : !nested.timeLeftOrNote("a local start", result)) {
     return;
   }
-  const AttemptLabel label(&attempt_, "local start");
+  const AttemptLabel label(&attempt_, attemptName("local start"));
   Associations local_associations;
   AttemptOptions options;
   options.local_start = true;
@@ -183,7 +198,7 @@ void PdaRegistration::tryOtherDirection(const PointList& source, const Eigen::Is
   if (contest ? !nested.timeLeft() : !nested.timeLeftOrNote("the other direction", result)) {
     return;
   }
-  const AttemptLabel label(&attempt_, "other direction");
+  const AttemptLabel label(&attempt_, attemptName("other direction"));
   Associations swapped_associations;
   bool fits_more = false;
   RegistrationResult swapped =
@@ -217,7 +232,7 @@ void PdaRegistration::tryWiderSearch(const PointList& source, const Eigen::Isome
   // A converged result stands when there is no time to question it; a failed one says why.
   if (contest ? !nested.timeLeft() : !nested.timeLeftOrNote("a wider search", result)) return;
   parameters_ = widerSearchParameters(parameters_);  // the user's, with what is left of the time
-  const AttemptLabel label(&attempt_, "wider search");
+  const AttemptLabel label(&attempt_, attemptName("wider search"));
   Associations wide_associations;
   RegistrationResult wide =
       alignUnchecked(source, T_initial, associations ? &wide_associations : nullptr);
@@ -245,7 +260,11 @@ void PdaRegistration::traceAttempt(const RegistrationResult& attempt, bool adopt
   record.T_target_source = attempt.T_target_source;
   record.time_ms =
       std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - started).count();
-  trace_.attempt(record);
+  if (deferred_attempts_) {
+    deferred_attempts_->push_back(std::move(record));
+  } else {
+    trace_.attempt(record);
+  }
 }
 
 RegistrationResult PdaRegistration::alignSwapped(const PointList& source,

@@ -75,7 +75,7 @@ void PdaRegistration::runSecondStarts(
     if (basin.contains(start) || (tried && basin.near(*tried, start))) continue;
     tried = &start;
     const NestedAlignment nested(&parameters_, started);
-    const AttemptLabel label(&attempt_, "second start");
+    const AttemptLabel label(&attempt_, attemptName("second start"));
     if (!nested.timeLeft()) return;
     Associations second_associations;
     AttemptOptions options;
@@ -175,7 +175,7 @@ void PdaRegistration::settleEarlySecondStarts(const Eigen::Isometry3d& T_initial
         fitsMoreOfTheOverlap(early->pending[i], result->T_target_source, result->sigma, *index);
     {
       // Noted once decided: its runs came before the first attempt's last ones.
-      const AttemptLabel label(&attempt_, "second start");
+      const AttemptLabel label(&attempt_, attemptName("second start"));
       traceAttempt(early->pending[i], better, started);
     }
     adoptNested(better, &early->pending[i], &early->pending_associations[i], result,

@@ -14,6 +14,7 @@
 #include "pda_registration/core/em_run.hpp"
 #include "pda_registration/core/final_statistics.hpp"
 #include "pda_registration/core/local_start.hpp"
+#include "pda_registration/core/near_search.hpp"
 #include "pda_registration/core/nearest_rotation.hpp"
 #include "pda_registration/core/point_filter.hpp"
 #include "pda_registration/core/run_extrapolation.hpp"
@@ -146,6 +147,7 @@ RegistrationResult PdaRegistration::alignUnchecked(const PointList& source_input
   if (p.sigma_mode == SigmaMode::kFixed) state.sigma_squared = p.fixed_sigma * p.fixed_sigma;
   CandidateSets& candidates = workspace_.candidates;
   Increment last_run_step{0.0, 0.0};
+  double last_rms_step = 0.0;  // the last run's RMS displacement of the points it aligned
   bool em_settled = false;  // did the last run's EM loop stop on the epsilons?
   bool asked_at_nu_floor = false;
 
@@ -169,8 +171,13 @@ RegistrationResult PdaRegistration::alignUnchecked(const PointList& source_input
     }
     const PointList& active = stage == Stage::kApproach ? coarse_source : source;
     work += static_cast<double>(active.size()) / static_cast<double>(source.size());
-    const double radius =
+    double radius =
         stage == Stage::kRefine && p.max_runs > 1 ? refineRadius(p, state.sigma_squared) : p.radius;
+    // A near search (near_search.hpp): once its first run has moved, the approach and settle runs
+    // search only as far as the steps still reach, so settled unshared points stop pulling.
+    if (radius_follows_steps_ && stage != Stage::kRefine && run > 1) {
+      radius = stepFollowingRadius(p, last_rms_step);
+    }
     findCandidateSets(*index, active, state.T, p.k, radius, p.threads, &workspace_.search,
                       &candidates);
     state.search_radius = radius;
@@ -200,6 +207,7 @@ RegistrationResult PdaRegistration::alignUnchecked(const PointList& source_input
       return result;
     }
     last_run_step = incrementBetween(T_run_start, state.T);
+    last_rms_step = rmsDisplacement(active, T_run_start, state.T);
     if (trace_.run) {
       RunRecord record;
       record.attempt = attempt_;

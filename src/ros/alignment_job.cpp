@@ -175,6 +175,7 @@ void AlignmentJob::run(const SparseJob& job, const LiveParameters& live) {
     s.roles_swapped = result.roles_swapped;
     s.search_widened = result.search_widened;
     s.local_start = result.local_start;
+    s.near_search = result.near_search;
     s.warp_polished = result.warp_polished;
     s.source_points_used = result.source_points_used;
     s.source_points_received = source_points->size();

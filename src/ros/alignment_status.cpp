@@ -95,6 +95,7 @@ void AlignmentStatus::fill(diagnostic_updater::DiagnosticStatusWrapper& status,
   status.add("roles swapped", s.roles_swapped);
   status.add("search widened", s.search_widened);
   status.add("local start", s.local_start);
+  status.add("near search", s.near_search);
   status.add("warp polished", s.warp_polished);
   status.add("resident memory [MB]", processMemory().resident_mb);
   status.add("sparse clouds received", s.sparse_received);

@@ -140,6 +140,7 @@ int main(int argc, char** argv) {
     json.add("roles_swapped", r.roles_swapped);
     json.add("search_widened", r.search_widened);
     json.add("local_start", r.local_start);
+    json.add("near_search", r.near_search);
     json.add("warp_polished", r.warp_polished);
     json.add("target_index_ms", r.target_index_ms);
     json.add("source_with_candidates", r.source_points_with_candidates);

@@ -27,6 +27,12 @@ MapSimulationOptions rgbdFragmentOptions(uint64_t seed, double distortion) {
   return options;
 }
 
+MapSimulationOptions lowOverlapFragmentOptions(uint64_t seed) {
+  MapSimulationOptions options = rgbdFragmentOptions(seed);
+  options.fragment_length = 0.4;
+  return options;
+}
+
 MapSimulationOptions carParkOptions(DenseSensor dense_sensor, bool same_pose) {
   MapSimulationOptions options;
   options.seed = 3;

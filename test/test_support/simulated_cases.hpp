@@ -20,6 +20,11 @@ simulation::MapSimulationOptions smallOfficeOptions(uint64_t seed);
 /// least-squares rigid fit over the overlap).
 simulation::MapSimulationOptions rgbdFragmentOptions(uint64_t seed, double distortion = 0.0);
 
+/// rgbdFragmentOptions(seed) with fragments that each scan 40 % of the walkway, so that they
+/// share about a third of the scene (pda_simulate ... --fragment-length 0.4; docs/benchmark.md,
+/// "RGB-D fragments that share less").
+simulation::MapSimulationOptions lowOverlapFragmentOptions(uint64_t seed);
+
 /// The car park scanned by lidars only (maps kept whole, as pda_simulate keeps lidar maps).
 simulation::MapSimulationOptions carParkOptions(simulation::DenseSensor dense_sensor,
                                                 bool same_pose);

@@ -83,6 +83,19 @@ class PdaRegistration {
 
  private:
   TargetIndexing indexing() const;
+  /// The first attempt and the fallbacks its result calls for (second starts, a local start, the
+  /// other direction, a wider search); `near_search`: the first attempt (and the second starts it
+  /// asks at nu's floor) searches as far as its steps reach (near_search.hpp).
+  RegistrationResult alignWithFallbacks(const PointList& source, const Eigen::Isometry3d& T_initial,
+                                        std::chrono::steady_clock::time_point start,
+                                        Associations* associations, bool near_search = false);
+  /// A questionable `result` (localStartWarranted): alignWithFallbacks() once more from the seed as
+  /// a near search, its answer kept as near_search.hpp says (near_search_attempt.cpp).
+  void tryNearSearch(const PointList& source, const Eigen::Isometry3d& T_initial,
+                     std::chrono::steady_clock::time_point started, RegistrationResult* result,
+                     Associations* associations);
+  /// The trace's name of an attempt: `usual`, or its "near search: " variant within a near search.
+  const char* attemptName(const char* usual) const;
   RegistrationResult alignUnchecked(const PointList& source,
                                     const Eigen::Isometry3d& T_target_source_initial,
                                     Associations* associations,
@@ -176,6 +189,10 @@ class PdaRegistration {
   RegistrationWorkspace spare_workspace_;  // for attempts run while another one pauses
   AlignmentTrace trace_;
   const char* attempt_ = "first";  // the attempt alignUnchecked() is running, for the trace
+  bool radius_follows_steps_ = false;  // approach and settle radius: stepFollowingRadius()
+  bool in_near_search_ = false;        // the attempts running are a near search's
+  // A near search's attempt records wait here until it is known whether its answer is adopted.
+  std::vector<AttemptRecord>* deferred_attempts_ = nullptr;
 };
 
 }  // namespace pda_registration

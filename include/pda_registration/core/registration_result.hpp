@@ -59,6 +59,9 @@ struct RegistrationResult {
   /// The first alignment failed, or slid away from the seed; this is the one from the seed with
   /// the outlier class, kept near the seed (local_start.hpp).
   bool local_start = false;
+  /// The usual answer was questionable (as for a local start); this is the whole alignment once
+  /// more from the seed, its first attempt searching as far as its steps reach (near_search.hpp).
+  bool near_search = false;
   /// The halves of the overlap disagreed: the result was refined on with Gaussian weights, to the
   /// least-squares fit over the warped overlap (warp_polish.hpp); nu is then infinity.
   bool warp_polished = false;

@@ -38,6 +38,7 @@ struct AlignmentStatusValues {
   bool roles_swapped = false;   ///< the source was the denser cloud: EM ran the other way round
   bool search_widened = false;  ///< came to rest unresolved: aligned again with the radius doubled
   bool local_start = false;     ///< did not converge: aligned again from the seed, outlier class
+  bool near_search = false;     ///< questionable: aligned again from the seed, searching near
   bool warp_polished = false;   ///< the overlap's halves disagreed: refined to least squares
   ros::WallTime dense_arrival;
   // Index keeping (its own thread): when the index in use became ready, what its last update

@@ -1,0 +1,45 @@
+#pragma once
+// A near search: the whole alignment once more from the seed, its first attempt searching only as
+// far as its own steps still reach, run where the usual answer is questionable.
+//
+// The usual search radius (1 m) is reach: from 10-20 deg a lidar scan's yaw needs poles and walls
+// metres away. It is also pull: on two RGB-D fragments that share a third of the scene the
+// unshared two thirds still find candidates within it (indoors no wall is a metre away), hold
+// sigma at 0.14-0.18 m and drag the source along the walkway. Nothing local to a run tells the two
+// apart (a lidar scan's ground fits at once, so its steps are small while its yaw still needs the
+// far points), so the near search is a second opinion, not the default: where the usual answer is
+// questionable by the local start's test (it did not converge, or it converged with nu at its
+// floor after moving the source at least the radius from the seed: local_start.hpp), the whole
+// alignment (second starts, local start, other direction, wider search) runs again, its first
+// attempt's approach and settle runs (and the second starts it asks at nu's floor) searching within
+// three times the last run's RMS step, between max(min_radius, radius / 2) and radius: once the
+// approach has settled, the unshared points a metre away stop pulling. Simulated fragments sharing
+// 30-34 % of the scene (scripts/benchmark_low_overlap, L = 0.4) from 10 deg / 0.5 m: 24 -> 34 of
+// 40 within 5 cm.
+//
+// The near answer replaces a converged usual answer only if it fits more of the overlap (one
+// yardstick, second_start.hpp's test); it replaces a failed one only if it converged and is not
+// questionable itself (else a converged false fit would stand where the usual answer honestly
+// said "not converged").
+
+#include "pda_registration/core/registration_parameters.hpp"
+#include "pda_registration/core/registration_result.hpp"
+
+namespace pda_registration {
+
+/// How many of the last run's RMS steps a near search's approach and settle runs search within.
+constexpr double kNearSearchSteps = 3.0;
+
+/// The candidate radius of a near search's approach or settle run after its first:
+/// kNearSearchSteps x `last_rms_step` (the last run's RMS displacement of the source), clamped to
+/// [max(min_radius, radius / 2), radius].
+double stepFollowingRadius(const RegistrationParameters& p, double last_rms_step);
+
+/// Whether the near search's answer replaces the usual one. `usual_converged`: the usual answer
+/// converged; `near_questionable`: the near answer itself warrants a local start
+/// (localStartWarranted); `near_fits_more`: it fits more of the overlap than the usual answer
+/// (fitsMoreOfTheOverlap, false when it did not converge).
+bool nearAnswerReplaces(bool usual_converged, const RegistrationResult& near,
+                        bool near_questionable, bool near_fits_more);
+
+}  // namespace pda_registration

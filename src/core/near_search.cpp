@@ -1,0 +1,18 @@
+#include "pda_registration/core/near_search.hpp"
+
+#include <algorithm>
+
+namespace pda_registration {
+
+double stepFollowingRadius(const RegistrationParameters& p, double last_rms_step) {
+  const double floor = std::min(std::max(p.min_radius, 0.5 * p.radius), p.radius);
+  return std::clamp(kNearSearchSteps * last_rms_step, floor, p.radius);
+}
+
+bool nearAnswerReplaces(bool usual_converged, const RegistrationResult& near,
+                        bool near_questionable, bool near_fits_more) {
+  if (!near.converged || near.out_of_time) return false;
+  return usual_converged ? near_fits_more : !near_questionable;
+}
+
+}  // namespace pda_registration
