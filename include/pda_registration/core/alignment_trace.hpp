@@ -2,8 +2,10 @@
 // What an alignment did, run by run and attempt by attempt, for a user who asks why it took 80
 // runs or why it answered what it did (`pda_align --trace`). One align() is one or more
 // attempts: the first, then, where its result calls for them, a second start, a local start, the
-// other direction and a wider search (pda_registration.hpp); each attempt is a sequence of runs
-// (approach, settle, refine: docs/algorithm.md). A second start may run while the first attempt
+// other direction and a wider search, and where their answer is questionable all of them again
+// as a near search ("near search", "near search: second start", ...: near_search.hpp; its
+// attempts are noted once it is decided whether its answer stays; pda_registration.hpp). Each
+// attempt is a sequence of runs (approach, settle, refine: docs/algorithm.md). A second start may run while the first attempt
 // pauses at nu's floor: its runs then come between the first's, and the first attempt is noted
 // after its own last run. Reading the trace changes nothing: an alignment traced answers exactly
 // what it answers untraced.
