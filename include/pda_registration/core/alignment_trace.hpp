@@ -5,9 +5,9 @@
 // other direction and a wider search, and where their answer is questionable all of them again
 // as a near search ("near search", "near search: second start", ...: near_search.hpp; its
 // attempts are noted once it is decided whether its answer stays; pda_registration.hpp). Each
-// attempt is a sequence of runs (approach, settle, refine: docs/algorithm.md). A second start may run while the first attempt
-// pauses at nu's floor: its runs then come between the first's, and the first attempt is noted
-// after its own last run. Reading the trace changes nothing: an alignment traced answers exactly
+// attempt is a sequence of runs (approach, settle, refine: docs/algorithm.md). A second start
+// may run while the first attempt pauses at nu's floor: its runs then come between the first's,
+// and the first attempt is noted after its own last run. Reading the trace changes nothing: an alignment traced answers exactly
 // what it answers untraced.
 
 #include <cstddef>
