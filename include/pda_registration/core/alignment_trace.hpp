@@ -7,8 +7,8 @@
 // attempts are noted once it is decided whether its answer stays; pda_registration.hpp). Each
 // attempt is a sequence of runs (approach, settle, refine: docs/algorithm.md). A second start
 // may run while the first attempt pauses at nu's floor: its runs then come between the first's,
-// and the first attempt is noted after its own last run. Reading the trace changes nothing: an alignment traced answers exactly
-// what it answers untraced.
+// and the first attempt is noted after its own last run. Reading the trace changes nothing: an
+// alignment traced answers exactly what it answers untraced.
 
 #include <cstddef>
 #include <functional>
