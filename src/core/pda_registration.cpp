@@ -85,7 +85,7 @@ RegistrationResult PdaRegistration::align(const PointList& source,
   RegistrationResult result;
   try {
     result = alignWithFallbacks(source, T_target_source_initial, start, associations);
-    // Where that answer is questionable, the whole of it once more, searching near (near_search.hpp).
+    // Where that answer is questionable, all of it once more, searching near (near_search.hpp).
     tryNearSearch(source, T_target_source_initial, start, &result, associations);
   } catch (const std::exception& error) {
     if (associations) *associations = Associations();

@@ -35,8 +35,9 @@ const AttemptRecord* attemptNamed(const TracedAlignment& traced, const std::stri
   const AttemptRecord* a = attemptNamed(traced, name);
   if (a == nullptr) return ::testing::AssertionFailure() << "no " << name << " ran";
   if (a->adopted != adopted) {
-    return ::testing::AssertionFailure()
-           << "the " << name << " was " << (a->adopted ? "adopted" : "dropped") << ": " << a->reason;
+    const char* outcome = a->adopted ? "adopted" : "dropped";
+    return ::testing::AssertionFailure() << "the " << name << " was " << outcome << ": "
+                                         << a->reason;
   }
   return ::testing::AssertionSuccess();
 }
