@@ -16,8 +16,7 @@ namespace pda_registration {
 void PdaRegistration::tryNearSearch(const PointList& source, const Eigen::Isometry3d& T_initial,
                                     std::chrono::steady_clock::time_point started,
                                     RegistrationResult* result, Associations* associations) {
-  const double moved = rmsDisplacement(workspace_.source, result->T_target_source, T_initial);
-  if (!localStartWarranted(*result, parameters_, moved)) return;
+  if (!questionable(*result, T_initial)) return;
   const bool usual_converged = result->converged;
   const NestedAlignment nested(&parameters_, started);
   // A converged result stands when there is no time to question it; a failed one says why.
@@ -40,8 +39,7 @@ void PdaRegistration::tryNearSearch(const PointList& source, const Eigen::Isomet
     deferred_attempts_ = nullptr;
   }
   near.near_search = true;
-  const bool near_questionable = localStartWarranted(
-      near, parameters_, rmsDisplacement(workspace_.source, near.T_target_source, T_initial));
+  const bool near_questionable = questionable(near, T_initial);
   const bool near_fits_more =
       usual_converged && usual_index &&
       fitsMoreOfTheOverlap(near, result->T_target_source, result->sigma, *usual_index);
@@ -53,6 +51,12 @@ void PdaRegistration::tryNearSearch(const PointList& source, const Eigen::Isomet
   }
   adoptNested(keep, &near, &near_associations, result, associations);
   if (!usual_converged) nested.noteIfCut("a near search", keep, cut, result);
+}
+
+bool PdaRegistration::questionable(const RegistrationResult& answer,
+                                   const Eigen::Isometry3d& T_initial) const {
+  const double moved = rmsDisplacement(workspace_.source, answer.T_target_source, T_initial);
+  return localStartWarranted(answer, parameters_, moved);
 }
 
 const char* PdaRegistration::attemptName(const char* usual) const {

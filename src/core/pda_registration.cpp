@@ -98,7 +98,8 @@ RegistrationResult PdaRegistration::align(const PointList& source,
     result.T_target_source = T_target_source_initial;
     result.reason = "internal error: unknown exception";
   }
-  radius_follows_steps_ = false;
+  radius_follows_steps_ = false;  // however the attempts ended (an exception skips their resets)
+  in_near_search_ = false;
   deferred_attempts_ = nullptr;
   result.time_ms =
       std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();

@@ -207,7 +207,7 @@ RegistrationResult PdaRegistration::alignUnchecked(const PointList& source_input
       return result;
     }
     last_run_step = incrementBetween(T_run_start, state.T);
-    last_rms_step = rmsDisplacement(active, T_run_start, state.T);
+    if (radius_follows_steps_) last_rms_step = rmsDisplacement(active, T_run_start, state.T);
     if (trace_.run) {
       RunRecord record;
       record.attempt = attempt_;

@@ -94,6 +94,9 @@ class PdaRegistration {
   void tryNearSearch(const PointList& source, const Eigen::Isometry3d& T_initial,
                      std::chrono::steady_clock::time_point started, RegistrationResult* result,
                      Associations* associations);
+  /// Whether `answer` warrants a near search (localStartWarranted, with how far it moved the
+  /// source aligned last from the seed T_initial).
+  bool questionable(const RegistrationResult& answer, const Eigen::Isometry3d& T_initial) const;
   /// The trace's name of an attempt: `usual`, or its "near search: " variant within a near search.
   const char* attemptName(const char* usual) const;
   RegistrationResult alignUnchecked(const PointList& source,
