@@ -31,6 +31,18 @@ TEST(NearSearch, RadiusFollowsThreeStepsBetweenHalfTheRadiusAndTheRadius) {
   EXPECT_DOUBLE_EQ(stepFollowingRadius(p, 0.1), 0.6);
 }
 
+TEST(NearSearch, RunsWhereTheUsualAnswerIsQuestionableOrAKeptLocalStart) {
+  RegistrationResult usual;
+  usual.converged = true;
+  EXPECT_FALSE(nearSearchWarranted(usual, /*usual_questionable=*/false));
+  EXPECT_TRUE(nearSearchWarranted(usual, true));
+  // A local start converged near the seed, as a false fit near the seed does as readily.
+  usual.local_start = true;
+  EXPECT_TRUE(nearSearchWarranted(usual, false));
+  usual.converged = false;  // a failure is questionable by the local start's test already
+  EXPECT_FALSE(nearSearchWarranted(usual, false));
+}
+
 TEST(NearSearch, ReplacesAConvergedAnswerIfItFitsMoreAndAFailureIfNotQuestionable) {
   RegistrationResult near;
   near.converged = true;
@@ -81,6 +93,57 @@ TEST(NearSearch, AlignsFragmentsSharingAThirdWhereTheUsualAlignmentFails) {
     if (std::string(run.stage) != "refine" && run.radius < p.radius) searched_nearer = true;
   }
   EXPECT_TRUE(searched_nearer);
+}
+
+// Layout 9 sharing a third from 5 deg / 0.25 m (perturbation 1): the first attempt slides 2.7 m
+// along the walkway, and the local start that questions it converges on a false fit near the seed
+// (0.55 m off, support 0.14). A kept local start is questioned in turn: the near search's second
+// start finds the truth and fits more of the overlap (1.6 cm; 0.55 m without this).
+TEST(NearSearch, QuestionsAKeptLocalStart) {
+  const simulation::SimulatedMaps maps =
+      simulation::simulateMaps(testing_support::lowOverlapFragmentOptions(9));
+  const TracedAlignment traced = testing_support::alignTraced(maps, 5.0, 0.25, 1);
+  const RegistrationResult& r = traced.result;
+
+  const AttemptRecord* local_start = testing_support::attemptNamed(traced, "local start");
+  ASSERT_NE(local_start, nullptr);
+  EXPECT_TRUE(local_start->converged);
+  const PoseError local_start_error =
+      poseError(maps.sparse, local_start->T_target_source, maps.T_target_source);
+  EXPECT_GT(local_start_error.mean_distance, 0.3);
+  ASSERT_TRUE(r.converged) << r.reason;
+  EXPECT_TRUE(r.near_search);
+  EXPECT_FALSE(r.local_start);
+  EXPECT_LT(poseError(maps.sparse, r.T_target_source, maps.T_target_source).mean_distance, 0.03);
+}
+
+// Layout 5 sharing a third from 5 deg / 0.25 m (perturbation 1): the usual alignment ends on the
+// other direction's false rest 2.6 m along the walkway. The near search's approach settles at
+// half the radius with sigma 9 cm; refine runs at 6 sigma (0.54-0.72 m) reached the unshared
+// points again and slid 1.3 m. Kept within the settle stage's reach, they converge on the truth
+// (9 mm).
+TEST(NearSearch, RefineRunsSearchNoFurtherThanTheSettledApproach) {
+  const simulation::SimulatedMaps maps =
+      simulation::simulateMaps(testing_support::lowOverlapFragmentOptions(5));
+  const TracedAlignment traced = testing_support::alignTraced(maps, 5.0, 0.25, 1);
+  const RegistrationResult& r = traced.result;
+
+  ASSERT_TRUE(r.converged) << r.reason;
+  EXPECT_TRUE(r.near_search);
+  EXPECT_LT(poseError(maps.sparse, r.T_target_source, maps.T_target_source).mean_distance, 0.02);
+  double reach = 0.0;
+  int refine_runs = 0;
+  for (const RunRecord& run : traced.runs) {
+    if (std::string(run.attempt) != "near search") continue;
+    if (std::string(run.stage) != "refine") {
+      reach = run.radius;
+      continue;
+    }
+    ++refine_runs;
+    EXPECT_LE(run.radius, reach) << "refine run " << run.run;
+  }
+  EXPECT_GT(refine_runs, 0);
+  EXPECT_LT(reach, RegistrationParameters().radius);
 }
 
 }  // namespace

@@ -9,6 +9,11 @@ double stepFollowingRadius(const RegistrationParameters& p, double last_rms_step
   return std::clamp(kNearSearchSteps * last_rms_step, floor, p.radius);
 }
 
+bool nearSearchWarranted(const RegistrationResult& usual, bool usual_questionable) {
+  // A kept local start converged near the seed, as a false fit near the seed does as readily.
+  return usual_questionable || (usual.converged && usual.local_start);
+}
+
 bool nearAnswerReplaces(bool usual_converged, const RegistrationResult& near,
                         bool near_questionable, bool near_fits_more) {
   if (!near.converged || near.out_of_time) return false;

@@ -16,7 +16,7 @@ namespace pda_registration {
 void PdaRegistration::tryNearSearch(const PointList& source, const Eigen::Isometry3d& T_initial,
                                     std::chrono::steady_clock::time_point started,
                                     RegistrationResult* result, Associations* associations) {
-  if (!questionable(*result, T_initial)) return;
+  if (!nearSearchWarranted(*result, questionable(*result, T_initial))) return;
   const bool usual_converged = result->converged;
   const NestedAlignment nested(&parameters_, started);
   // A converged result stands when there is no time to question it; a failed one says why.

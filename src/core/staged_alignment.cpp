@@ -164,6 +164,7 @@ RegistrationResult PdaRegistration::alignUnchecked(const PointList& source_input
            std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - started)
                    .count() > p.time_limit_ms;
   };
+  double near_reach = p.radius;  // a near search's last approach or settle radius
   for (int run = 1; work < p.max_runs; ++run) {
     if (run > 1 && outOfTime()) {
       result.out_of_time = true;
@@ -174,9 +175,13 @@ RegistrationResult PdaRegistration::alignUnchecked(const PointList& source_input
     double radius =
         stage == Stage::kRefine && p.max_runs > 1 ? refineRadius(p, state.sigma_squared) : p.radius;
     // A near search (near_search.hpp): once its first run has moved, the approach and settle runs
-    // search only as far as the steps still reach, so settled unshared points stop pulling.
-    if (radius_follows_steps_ && stage != Stage::kRefine && run > 1) {
-      radius = stepFollowingRadius(p, last_rms_step);
+    // search only as far as the steps still reach, so settled unshared points stop pulling, and
+    // its refine runs no further than the settle stage's last run (where the unshared points hold
+    // sigma up, 6 sigma would reach them again).
+    if (radius_follows_steps_) {
+      if (stage != Stage::kRefine && run > 1) radius = stepFollowingRadius(p, last_rms_step);
+      if (stage == Stage::kRefine) radius = std::min(radius, near_reach);
+      if (stage != Stage::kRefine) near_reach = radius;
     }
     findCandidateSets(*index, active, state.T, p.k, radius, p.threads, &workspace_.search,
                       &candidates);

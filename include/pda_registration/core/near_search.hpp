@@ -9,13 +9,16 @@
 // apart (a lidar scan's ground fits at once, so its steps are small while its yaw still needs the
 // far points), so the near search is a second opinion, not the default: where the usual answer is
 // questionable by the local start's test (it did not converge, or it converged with nu at its
-// floor after moving the source at least the radius from the seed: local_start.hpp), the whole
+// floor after moving the source at least the radius from the seed: local_start.hpp), or where it
+// is a kept local start (a false fit near the seed passes that start's test as readily), the whole
 // alignment (second starts, local start, other direction, wider search) runs again, its first
 // attempt's approach and settle runs (and the second starts it asks at nu's floor) searching within
 // three times the last run's RMS step, between max(min_radius, radius / 2) and radius: once the
-// approach has settled, the unshared points a metre away stop pulling. Simulated fragments sharing
-// 30-34 % of the scene (scripts/benchmark_low_overlap, L = 0.4) from 10 deg / 0.5 m: 24 -> 34 of
-// 40 within 5 cm.
+// approach has settled, the unshared points a metre away stop pulling. Its refine runs search no
+// further than the last of those runs: where the unshared points hold sigma up, 6 sigma would
+// reach them again. Simulated fragments sharing 30-34 % of the scene
+// (scripts/benchmark_low_overlap, L = 0.4) from 10 deg / 0.5 m: 24 -> 34 of 40 within 5 cm; from
+// 5 deg 36 -> 40.
 //
 // The near answer replaces a converged usual answer only if it fits more of the overlap (one
 // yardstick, second_start.hpp's test); it replaces a failed one only if it converged and is not
@@ -34,6 +37,11 @@ constexpr double kNearSearchSteps = 3.0;
 /// kNearSearchSteps x `last_rms_step` (the last run's RMS displacement of the source), clamped to
 /// [max(min_radius, radius / 2), radius].
 double stepFollowingRadius(const RegistrationParameters& p, double last_rms_step);
+
+/// Whether the near search runs after the usual answer: where that is questionable
+/// (`usual_questionable`: localStartWarranted) or a kept local start (it converged within the
+/// radius of the seed, as a false fit near the seed does as readily: local_start.hpp).
+bool nearSearchWarranted(const RegistrationResult& usual, bool usual_questionable);
 
 /// Whether the near search's answer replaces the usual one. `usual_converged`: the usual answer
 /// converged; `near_questionable`: the near answer itself warrants a local start
