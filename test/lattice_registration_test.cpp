@@ -20,6 +20,7 @@ namespace {
 using testing_support::alignedError;
 using testing_support::carParkOptions;
 using testing_support::latticeMaps;
+using testing_support::wideScanPairOptions;
 
 TEST(LatticeCase, SparseReturnsLieOnTheDenseLatticeOfTheSameSensor) {
   const SimulatedMaps& maps = latticeMaps();
@@ -272,14 +273,7 @@ TEST(NuMode, AGaussianIsKeptUnderTheDefaultModeAndRefusedOnlyWhenEstimated) {
 // verdict counts support within the overlap; counted over the whole source it called this
 // 2.8 mm result "unsupported" and the nodelet published nothing.
 TEST(HonestVerdict, ARightAlignmentOfScansThatOverlapLittleIsConverged) {
-  MapSimulationOptions options = carParkOptions(DenseSensor::kLidar64, false);
-  options.seed = 5;
-  options.dense_revolutions = 1;
-  options.velodyne_revolutions = 1;
-  options.dense_offset_set = true;
-  options.dense_offset = Eigen::Vector3d(20.0, 3.0, 0.0);
-  options.scan_frame = true;
-  const SimulatedMaps maps = simulateMaps(options);
+  const SimulatedMaps maps = simulateMaps(wideScanPairOptions(5));
   RegistrationResult result;
   const double error = alignedError(maps, RegistrationParameters(), 5.0, 0.25, 1, &result);
   EXPECT_LT(error, 0.01);

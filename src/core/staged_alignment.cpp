@@ -342,7 +342,11 @@ RegistrationResult PdaRegistration::alignUnchecked(const PointList& source_input
     fillFinalStatistics(source, *index, *normal_map, p, state, &workspace_, &result, associations);
   }
 
-  judgeConvergence(p, result.converged, last_run_step, &result);
+  // A near search's refine runs searched no further than its settled reach: residuals as wide as
+  // that search are unresolved there, as they are at the whole radius otherwise.
+  RegistrationParameters judged = p;
+  if (radius_follows_steps_) judged.radius = near_reach;
+  judgeConvergence(judged, result.converged, last_run_step, &result);
   return result;
 }
 

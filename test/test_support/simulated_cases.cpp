@@ -43,6 +43,17 @@ MapSimulationOptions carParkOptions(DenseSensor dense_sensor, bool same_pose) {
   return options;
 }
 
+MapSimulationOptions wideScanPairOptions(uint64_t seed) {
+  MapSimulationOptions options = carParkOptions(DenseSensor::kLidar64, false);
+  options.seed = seed;
+  options.dense_revolutions = 1;
+  options.velodyne_revolutions = 1;
+  options.dense_offset_set = true;
+  options.dense_offset = Eigen::Vector3d(20.0, 3.0, 0.0);
+  options.scan_frame = true;
+  return options;
+}
+
 const SimulatedMaps& latticeMaps() {
   static const SimulatedMaps maps = simulateMaps(carParkOptions(DenseSensor::kLidar64, true));
   return maps;

@@ -29,6 +29,10 @@ simulation::MapSimulationOptions lowOverlapFragmentOptions(uint64_t seed);
 simulation::MapSimulationOptions carParkOptions(simulation::DenseSensor dense_sensor,
                                                 bool same_pose);
 
+/// One revolution of a 64-beam lidar against one VLP-16 revolution 20 m / 3 m away in the car park
+/// of `seed`, the scan in its sensor's frame (scripts/benchmark_scan_pairs' wide_lidar64_vlp16_*).
+simulation::MapSimulationOptions wideScanPairOptions(uint64_t seed);
+
 /// A static 64-beam lidar in a car park: the dense map is four revolutions of it, the sparse map
 /// one more revolution cut to 11 rings: every sparse return lies on the dense map's lattice.
 /// Simulated once per test program.
