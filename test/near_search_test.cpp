@@ -4,6 +4,8 @@
 
 #include <gtest/gtest.h>
 
+#include <cstdint>
+#include <map>
 #include <string>
 
 #include "pda_registration/core/error_metrics.hpp"
@@ -16,6 +18,24 @@ namespace pda_registration {
 namespace {
 
 using testing_support::TracedAlignment;
+
+// A layout of the fragments sharing a third of the office, simulated once per test program.
+const simulation::SimulatedMaps& lowOverlapMaps(uint64_t layout) {
+  static std::map<uint64_t, simulation::SimulatedMaps> simulated;
+  auto it = simulated.find(layout);
+  if (it == simulated.end()) {
+    it = simulated
+             .emplace(layout, simulation::simulateMaps(
+                                  testing_support::lowOverlapFragmentOptions(layout)))
+             .first;
+  }
+  return it->second;
+}
+
+// Eq. 22's error of `T` on `maps`.
+double errorOf(const simulation::SimulatedMaps& maps, const Eigen::Isometry3d& T) {
+  return poseError(maps.sparse, T, maps.T_target_source).mean_distance;
+}
 
 TEST(NearSearch, RadiusFollowsThreeStepsBetweenHalfTheRadiusAndTheRadius) {
   RegistrationParameters p;
@@ -66,8 +86,7 @@ TEST(NearSearch, ReplacesAConvergedAnswerIfItFitsMoreAndAFailureIfNotQuestionabl
 // reaching them, and its answer is the truth (9 mm; without the near search the answer is the
 // failure).
 TEST(NearSearch, AlignsFragmentsSharingAThirdWhereTheUsualAlignmentFails) {
-  const simulation::SimulatedMaps maps =
-      simulation::simulateMaps(testing_support::lowOverlapFragmentOptions(5));
+  const simulation::SimulatedMaps& maps = lowOverlapMaps(5);
   const TracedAlignment traced = testing_support::alignTraced(maps, 5.0, 0.25, 4);
   const RegistrationResult& r = traced.result;
 
@@ -82,7 +101,7 @@ TEST(NearSearch, AlignsFragmentsSharingAThirdWhereTheUsualAlignmentFails) {
   EXPECT_EQ(std::string(answer->attempt).rfind("near search", 0), 0u) << answer->attempt;
   ASSERT_TRUE(r.converged) << r.reason;
   EXPECT_TRUE(r.near_search);
-  EXPECT_LT(poseError(maps.sparse, r.T_target_source, maps.T_target_source).mean_distance, 0.02);
+  EXPECT_LT(errorOf(maps, r.T_target_source), 0.02);
 
   // Its first attempt searched nearer than the radius once it had moved.
   const RegistrationParameters p;
@@ -100,21 +119,18 @@ TEST(NearSearch, AlignsFragmentsSharingAThirdWhereTheUsualAlignmentFails) {
 // (0.55 m off, support 0.14). A kept local start is questioned in turn: the near search's second
 // start finds the truth and fits more of the overlap (1.6 cm; 0.55 m without this).
 TEST(NearSearch, QuestionsAKeptLocalStart) {
-  const simulation::SimulatedMaps maps =
-      simulation::simulateMaps(testing_support::lowOverlapFragmentOptions(9));
+  const simulation::SimulatedMaps& maps = lowOverlapMaps(9);
   const TracedAlignment traced = testing_support::alignTraced(maps, 5.0, 0.25, 1);
   const RegistrationResult& r = traced.result;
 
   const AttemptRecord* local_start = testing_support::attemptNamed(traced, "local start");
   ASSERT_NE(local_start, nullptr);
   EXPECT_TRUE(local_start->converged);
-  const PoseError local_start_error =
-      poseError(maps.sparse, local_start->T_target_source, maps.T_target_source);
-  EXPECT_GT(local_start_error.mean_distance, 0.3);
+  EXPECT_GT(errorOf(maps, local_start->T_target_source), 0.3);
   ASSERT_TRUE(r.converged) << r.reason;
   EXPECT_TRUE(r.near_search);
   EXPECT_FALSE(r.local_start);
-  EXPECT_LT(poseError(maps.sparse, r.T_target_source, maps.T_target_source).mean_distance, 0.03);
+  EXPECT_LT(errorOf(maps, r.T_target_source), 0.03);
 }
 
 // Layout 5 sharing a third from 5 deg / 0.25 m (perturbation 1): the usual alignment ends on the
@@ -123,14 +139,13 @@ TEST(NearSearch, QuestionsAKeptLocalStart) {
 // points again and slid 1.3 m. Kept within the settle stage's reach, they converge on the truth
 // (9 mm).
 TEST(NearSearch, RefineRunsSearchNoFurtherThanTheSettledApproach) {
-  const simulation::SimulatedMaps maps =
-      simulation::simulateMaps(testing_support::lowOverlapFragmentOptions(5));
+  const simulation::SimulatedMaps& maps = lowOverlapMaps(5);
   const TracedAlignment traced = testing_support::alignTraced(maps, 5.0, 0.25, 1);
   const RegistrationResult& r = traced.result;
 
   ASSERT_TRUE(r.converged) << r.reason;
   EXPECT_TRUE(r.near_search);
-  EXPECT_LT(poseError(maps.sparse, r.T_target_source, maps.T_target_source).mean_distance, 0.02);
+  EXPECT_LT(errorOf(maps, r.T_target_source), 0.02);
   double reach = 0.0;
   int refine_runs = 0;
   for (const RunRecord& run : traced.runs) {

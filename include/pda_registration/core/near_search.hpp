@@ -16,7 +16,8 @@
 // three times the last run's RMS step, between max(min_radius, radius / 2) and radius: once the
 // approach has settled, the unshared points a metre away stop pulling. Its refine runs search no
 // further than the last of those runs: where the unshared points hold sigma up, 6 sigma would
-// reach them again. Simulated fragments sharing 30-34 % of the scene
+// reach them again. Its answer is judged against that reach: 6 sigma at or beyond it is
+// "unresolved", as at the whole radius otherwise. Simulated fragments sharing 30-34 % of the scene
 // (scripts/benchmark_low_overlap, L = 0.4) from 10 deg / 0.5 m: 24 -> 34 of 40 within 5 cm; from
 // 5 deg 36 -> 40.
 //
