@@ -126,6 +126,7 @@ TEST(NearSearch, QuestionsAKeptLocalStart) {
   const AttemptRecord* local_start = testing_support::attemptNamed(traced, "local start");
   ASSERT_NE(local_start, nullptr);
   EXPECT_TRUE(local_start->converged);
+  EXPECT_TRUE(local_start->adopted);  // kept, until the near search replaced it
   EXPECT_GT(errorOf(maps, local_start->T_target_source), 0.3);
   ASSERT_TRUE(r.converged) << r.reason;
   EXPECT_TRUE(r.near_search);

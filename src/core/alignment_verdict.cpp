@@ -9,7 +9,8 @@ bool residualsSpanTheSearch(const RegistrationParameters& p, double sigma) {
 }
 
 void judgeConvergence(const RegistrationParameters& p, bool came_to_rest,
-                    const Increment& last_run_step, RegistrationResult* result) {
+                    const Increment& last_run_step, RegistrationResult* result,
+                    const char* search_name) {
   RegistrationResult& r = *result;
   std::ostringstream reason;
   r.converged = false;
@@ -31,8 +32,9 @@ void judgeConvergence(const RegistrationParameters& p, bool came_to_rest,
            << ", e.g. a single plane or a corridor)";
   } else if (residualsSpanTheSearch(p, r.sigma)) {
     // The clouds were never brought onto each other, however still the estimate came to rest.
-    reason << "unresolved: the residual scale sigma " << r.sigma << " is not below radius / 6 ("
-           << p.radius / 6.0 << "): the estimate is not at a fit of the two clouds";
+    reason << "unresolved: the residual scale sigma " << r.sigma << " is not below "
+           << search_name << " / 6 (" << p.radius / 6.0
+           << "): the estimate is not at a fit of the two clouds";
   } else if (r.support_fraction < p.min_support_fraction) {
     // sigma has settled on a small subset that fits almost exactly (a lattice alias of two scans
     // of one lidar, only the ground rings): the rest of the overlap says the pose is wrong. Source

@@ -1,7 +1,8 @@
 #include "pda_registration/core/pda_registration.hpp"
 
 // The near search (near_search.hpp) as align() runs it: after the usual alignment and its
-// fallbacks, where their answer is questionable, all of them once more from the seed.
+// fallbacks, where their answer is questionable or a kept local start, all of them once more from
+// the seed.
 
 #include <cstring>
 #include <utility>

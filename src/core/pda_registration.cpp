@@ -3,8 +3,8 @@
 // The engine's entry points: the target, the parameters, and align(), which runs the staged
 // alignment (staged_alignment.cpp) and, where its result calls for one, a second start
 // (second_start_attempts.cpp: also while the first pauses at nu's floor), a local start, the
-// other direction or a wider search; where that answer is questionable, all of it once more as a
-// near search (near_search_attempt.cpp).
+// other direction or a wider search; where that answer is questionable or a kept local start, all
+// of it once more as a near search (near_search_attempt.cpp).
 
 #include <chrono>
 #include <cmath>
@@ -85,7 +85,8 @@ RegistrationResult PdaRegistration::align(const PointList& source,
   RegistrationResult result;
   try {
     result = alignWithFallbacks(source, T_target_source_initial, start, associations);
-    // Where that answer is questionable, all of it once more, searching near (near_search.hpp).
+    // Where that answer is questionable (or a kept local start), all of it once more, searching
+    // near (near_search.hpp).
     tryNearSearch(source, T_target_source_initial, start, &result, associations);
   } catch (const std::exception& error) {
     if (associations) *associations = Associations();

@@ -245,6 +245,8 @@ RegistrationResult PdaRegistration::alignUnchecked(const PointList& source_input
     // verdict) and stops there, as an approach at rest does below. On RGB-D fragments that share
     // a third of the scene the refine runs wandered so at sigma 0.16-0.18 m for 12-30 more runs,
     // a third of the failing attempt's work, into the same verdict.
+    // (A near search's refine runs are judged against its reach only at their end: its first refine
+    // runs start at sigma 9-12 cm, 6 sigma past a 0.5-m reach, and narrow from there.)
     if (stage == Stage::kRefine && p.max_runs > 1 &&
         residualsSpanTheSearch(p, std::sqrt(state.sigma_squared))) {
       result.converged = true;  // judgeConvergence says what it is
@@ -332,9 +334,13 @@ RegistrationResult PdaRegistration::alignUnchecked(const PointList& source_input
     findCandidateSets(*index, source, T, p.k, p.radius, p.threads, &workspace_.search, &candidates);
   }
   fillFinalStatistics(source, *index, *normal_map, p, state, &workspace_, &result, associations);
+  // A near search's refine runs searched no further than its settled reach, so does its polish,
+  // and residuals as wide as that search are unresolved there, as at the whole radius otherwise.
+  RegistrationParameters within_reach = p;
+  if (radius_follows_steps_) within_reach.radius = near_reach;
   if (warpPolishWarranted(result, p, state.nu) &&
-      polishOverAWarp(*index, source, *normal_map, p, step_metric, outOfTime, &workspace_, &state,
-                      &result.runs, &result.em_iterations)) {
+      polishOverAWarp(*index, source, *normal_map, within_reach, step_metric, outOfTime,
+                      &workspace_, &state, &result.runs, &result.em_iterations)) {
     result.T_target_source = state.T;
     result.sigma = std::sqrt(state.sigma_squared);
     result.nu = state.nu;
@@ -342,11 +348,8 @@ RegistrationResult PdaRegistration::alignUnchecked(const PointList& source_input
     fillFinalStatistics(source, *index, *normal_map, p, state, &workspace_, &result, associations);
   }
 
-  // A near search's refine runs searched no further than its settled reach: residuals as wide as
-  // that search are unresolved there, as they are at the whole radius otherwise.
-  RegistrationParameters judged = p;
-  if (radius_follows_steps_) judged.radius = near_reach;
-  judgeConvergence(judged, result.converged, last_run_step, &result);
+  judgeConvergence(within_reach, result.converged, last_run_step, &result,
+                   radius_follows_steps_ ? "the near search's reach" : "radius");
   return result;
 }
 

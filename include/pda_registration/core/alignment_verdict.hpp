@@ -16,8 +16,11 @@ namespace pda_registration {
 bool residualsSpanTheSearch(const RegistrationParameters& p, double sigma);
 
 /// Sets result->converged and result->reason from the result's statistics. `came_to_rest`: the
-/// runs stopped on their own (not at the budget); `last_run_step`: the last run's move.
+/// runs stopped on their own (not at the budget); `last_run_step`: the last run's move;
+/// `search_name`: what p.radius is, in the "unresolved" reason (a near search judges its answer
+/// against its own reach).
 void judgeConvergence(const RegistrationParameters& p, bool came_to_rest,
-                    const Increment& last_run_step, RegistrationResult* result);
+                    const Increment& last_run_step, RegistrationResult* result,
+                    const char* search_name = "radius");
 
 }  // namespace pda_registration
