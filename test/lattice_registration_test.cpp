@@ -20,7 +20,6 @@ namespace {
 using testing_support::alignedError;
 using testing_support::carParkOptions;
 using testing_support::latticeMaps;
-using testing_support::wideScanPairOptions;
 
 TEST(LatticeCase, SparseReturnsLieOnTheDenseLatticeOfTheSameSensor) {
   const SimulatedMaps& maps = latticeMaps();
@@ -157,13 +156,7 @@ TEST(LatticeCase, DefaultsRecoverTheVlp16LatticeInsteadOfFittingTheLaserCones) {
 // sparse against sparse, the kept-aside "two sparse outdoor scans" regime. The scan is in its
 // sensor's frame, as a real scan is, so a perturbation turns it about its sensor.
 MapSimulationOptions scanPairOptions() {
-  MapSimulationOptions options = carParkOptions(DenseSensor::kVlp16, false);
-  options.dense_revolutions = 1;
-  options.velodyne_revolutions = 1;
-  options.dense_offset_set = true;
-  options.dense_offset = Eigen::Vector3d(3.0, 0.0, 31.0);
-  options.scan_frame = true;
-  return options;
+  return testing_support::scanPairOptions(DenseSensor::kVlp16, 3, Eigen::Vector3d(3.0, 0.0, 31.0));
 }
 
 TEST(ScanPair, TheScanIsInItsSensorsFrameAndTheMapsSensorWhereTheOffsetSays) {
@@ -273,7 +266,8 @@ TEST(NuMode, AGaussianIsKeptUnderTheDefaultModeAndRefusedOnlyWhenEstimated) {
 // verdict counts support within the overlap; counted over the whole source it called this
 // 2.8 mm result "unsupported" and the nodelet published nothing.
 TEST(HonestVerdict, ARightAlignmentOfScansThatOverlapLittleIsConverged) {
-  const SimulatedMaps maps = simulateMaps(wideScanPairOptions(5));
+  const SimulatedMaps maps = simulateMaps(
+      testing_support::scanPairOptions(DenseSensor::kLidar64, 5, Eigen::Vector3d(20.0, 3.0, 0.0)));
   RegistrationResult result;
   const double error = alignedError(maps, RegistrationParameters(), 5.0, 0.25, 1, &result);
   EXPECT_LT(error, 0.01);

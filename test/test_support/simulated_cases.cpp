@@ -43,13 +43,14 @@ MapSimulationOptions carParkOptions(DenseSensor dense_sensor, bool same_pose) {
   return options;
 }
 
-MapSimulationOptions wideScanPairOptions(uint64_t seed) {
-  MapSimulationOptions options = carParkOptions(DenseSensor::kLidar64, false);
+MapSimulationOptions scanPairOptions(DenseSensor dense_sensor, uint64_t seed,
+                                     const Eigen::Vector3d& dense_offset) {
+  MapSimulationOptions options = carParkOptions(dense_sensor, false);
   options.seed = seed;
   options.dense_revolutions = 1;
   options.velodyne_revolutions = 1;
   options.dense_offset_set = true;
-  options.dense_offset = Eigen::Vector3d(20.0, 3.0, 0.0);
+  options.dense_offset = dense_offset;
   options.scan_frame = true;
   return options;
 }

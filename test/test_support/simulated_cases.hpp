@@ -29,9 +29,12 @@ simulation::MapSimulationOptions lowOverlapFragmentOptions(uint64_t seed);
 simulation::MapSimulationOptions carParkOptions(simulation::DenseSensor dense_sensor,
                                                 bool same_pose);
 
-/// One revolution of a 64-beam lidar against one VLP-16 revolution 20 m / 3 m away in the car park
-/// of `seed`, the scan in its sensor's frame (scripts/benchmark_scan_pairs' wide_lidar64_vlp16_*).
-simulation::MapSimulationOptions wideScanPairOptions(uint64_t seed);
+/// Single revolutions in the car park of `seed` (scripts/benchmark_scan_pairs): one of
+/// `dense_sensor` as the map, `dense_offset` (x, y [m], yaw [deg]) from one VLP-16 revolution, the
+/// scan in its sensor's frame, as a real scan is.
+simulation::MapSimulationOptions scanPairOptions(simulation::DenseSensor dense_sensor,
+                                                 uint64_t seed,
+                                                 const Eigen::Vector3d& dense_offset);
 
 /// A static 64-beam lidar in a car park: the dense map is four revolutions of it, the sparse map
 /// one more revolution cut to 11 rings: every sparse return lies on the dense map's lattice.
