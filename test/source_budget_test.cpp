@@ -1,5 +1,6 @@
 // The per-alignment source budget: a spatial subsample spreads the source over the space it
-// covers, a random one keeps every point equally likely, and the parameter is validated.
+// covers, a random one keeps every point equally likely, the source as aligned is finite,
+// voxelised and budgeted in that order, and the parameter is validated.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -7,6 +8,7 @@
 #include <random>
 
 #include "pda_registration/core/pda_registration.hpp"
+#include "pda_registration/core/point_filter.hpp"
 #include "pda_registration/core/source_budget.hpp"
 #include "pda_registration/core/target_index.hpp"
 
@@ -91,6 +93,40 @@ TEST(SourceBudget, RandomSubsampleIsUnbiased) {
     // A cloud of finite points is sampled in place: the same subsample as the filtered copy's.
     EXPECT_EQ(randomSubsample(finite, budget), kept);
   }
+}
+
+// The source as the runs align it: its finite points, voxelised when asked, then within the
+// budget; the flag says whether the budget cut it (the target's index follows a budgeted
+// source's spacing).
+TEST(SourceBudget, AlignedSourceIsFiniteVoxelisedThenBudgeted) {
+  const PointList cloud = unevenCloud();
+  PointList finite;
+  for (const Point& p : cloud) {
+    if (p.allFinite()) finite.push_back(p);
+  }
+  RegistrationParameters p;
+  p.max_source_points = 0;
+  PointList source(5, Point::Zero());  // memory in use from an earlier alignment
+  EXPECT_FALSE(prepareAlignedSource(cloud, finite.size(), p, &source));
+  EXPECT_EQ(source, finite);  // no budget: every finite point, in order
+
+  p.max_source_points = 5000;  // cut straight from the input, as a filtered copy would be
+  for (const bool spread : {false, true}) {
+    p.spread_source_budget = spread;
+    EXPECT_TRUE(prepareAlignedSource(cloud, finite.size(), p, &source));
+    EXPECT_EQ(source, spread ? spatialSubsample(finite, 5000) : randomSubsample(finite, 5000));
+  }
+
+  p.spread_source_budget = false;
+  p.source_voxel_size = 0.2;  // voxelised first: the cube's 90 % become one or a few voxel means
+  const PointList voxelised = voxelDownsample(finite, 0.2);
+  ASSERT_LT(voxelised.size(), size_t(5000));
+  ASSERT_GT(voxelised.size(), size_t(200));
+  EXPECT_FALSE(prepareAlignedSource(cloud, finite.size(), p, &source));
+  EXPECT_EQ(source, voxelised);
+  p.max_source_points = 200;  // ... and still over the budget
+  EXPECT_TRUE(prepareAlignedSource(cloud, finite.size(), p, &source));
+  EXPECT_EQ(source, randomSubsample(voxelised, 200));
 }
 
 TEST(SourceBudget, ParameterIsValidated) {

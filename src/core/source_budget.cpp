@@ -295,4 +295,30 @@ PointList spatialSubsample(const PointList& points, size_t max_points, size_t fi
   return spreadOverSpace(points, pool, max_points);
 }
 
+bool prepareAlignedSource(const PointList& input, size_t finite_points,
+                          const RegistrationParameters& parameters, PointList* source) {
+  const size_t budget =
+      parameters.max_source_points > 0 ? static_cast<size_t>(parameters.max_source_points) : 0;
+  const auto subsample = [&](const PointList& points, size_t finite) {
+    return parameters.spread_source_budget ? spatialSubsample(points, budget, finite)
+                                           : randomSubsample(points, budget, finite);
+  };
+  // A source beyond the budget (and not voxelised first) is sampled straight from the input: the
+  // same subset as from a filtered copy, without copying a map of millions of points.
+  if (budget > 0 && !(parameters.source_voxel_size > 0.0) && finite_points > budget) {
+    *source = subsample(input, finite_points);
+    return true;
+  }
+  *source = input;
+  removeNonFinitePoints(source);
+  if (parameters.source_voxel_size > 0.0) {
+    *source = voxelDownsample(*source, parameters.source_voxel_size);
+  }
+  if (budget == 0) return false;
+  PointList kept = subsample(*source, source->size());
+  if (kept.empty()) return false;  // within the budget already
+  *source = std::move(kept);
+  return true;
+}
+
 }  // namespace pda_registration

@@ -1,7 +1,7 @@
 #include "pda_registration/core/pda_registration.hpp"
 // The staged runs of one alignment (approach, settle, refine; pda_registration.hpp) and what
-// they need around them: the source as aligned, the target's index for it, the final statistics
-// and the verdict.
+// they need around them: the target's index for the source as aligned (source_budget.hpp), the
+// final statistics and the verdict.
 
 #include <algorithm>
 #include <chrono>
@@ -25,6 +25,12 @@
 
 namespace pda_registration {
 namespace {
+
+enum class Stage { kApproach, kSettle, kRefine };
+
+const char* nameOf(Stage stage) {
+  return stage == Stage::kApproach ? "approach" : (stage == Stage::kSettle ? "settle" : "refine");
+}
 
 // Accepts a slightly non-orthonormal rotation (text files round it) and snaps it back; rejects
 // anything that is not close to a rigid transform.
@@ -70,26 +76,9 @@ RegistrationResult PdaRegistration::alignUnchecked(const PointList& source_input
 
   PointList& source = workspace_.source;
   workspace_.search.forget();  // new points in the same memory, perhaps a new target
-  const size_t budget = p.max_source_points > 0 ? static_cast<size_t>(p.max_source_points) : 0;
   const size_t finite_points = countFinitePoints(source_input);
   result.source_points_dropped = source_input.size() - finite_points;
-  // A source beyond the budget (and not voxelised first) is sampled straight from the input: the
-  // same subset as from a filtered copy, without copying a map of millions of points.
-  bool budgeted_source = budget > 0 && !(p.source_voxel_size > 0.0) && finite_points > budget;
-  if (budgeted_source) {
-    source = p.spread_source_budget ? spatialSubsample(source_input, budget, finite_points)
-                                    : randomSubsample(source_input, budget, finite_points);
-  } else {
-    source = source_input;
-    removeNonFinitePoints(&source);
-    if (p.source_voxel_size > 0.0) source = voxelDownsample(source, p.source_voxel_size);
-    if (budget > 0) {
-      PointList budgeted = p.spread_source_budget ? spatialSubsample(source, budget)
-                                                  : randomSubsample(source, budget);
-      budgeted_source = !budgeted.empty();
-      if (budgeted_source) source = std::move(budgeted);
-    }
-  }
+  const bool budgeted_source = prepareAlignedSource(source_input, finite_points, p, &source);
   result.source_points_used = source.size();
   if (source.size() < static_cast<size_t>(p.min_correspondences)) {
     std::ostringstream reason;
@@ -136,7 +125,6 @@ RegistrationResult PdaRegistration::alignUnchecked(const PointList& source_input
       source.size() / p.coarse_stride >= 20 * static_cast<size_t>(p.min_correspondences)) {
     coarse_source = randomSubsample(source, source.size() / p.coarse_stride);
   }
-  enum class Stage { kApproach, kSettle, kRefine };
   Stage stage = p.max_runs == 1 ? Stage::kRefine
                                 : (coarse_source.empty() ? Stage::kSettle : Stage::kApproach);
 
@@ -214,19 +202,9 @@ RegistrationResult PdaRegistration::alignUnchecked(const PointList& source_input
     last_run_step = incrementBetween(T_run_start, state.T);
     if (radius_follows_steps_) last_rms_step = rmsDisplacement(active, T_run_start, state.T);
     if (trace_.run) {
-      RunRecord record;
-      record.attempt = attempt_;
-      record.run = run;
-      record.stage = stage == Stage::kApproach ? "approach"
-                                               : (stage == Stage::kSettle ? "settle" : "refine");
-      record.points = active.size();
-      record.radius = radius;
-      record.sigma = std::sqrt(state.sigma_squared);
-      record.nu = state.nu;
-      record.step_translation = last_run_step.translation;
-      record.step_rotation = last_run_step.rotation;
-      record.em_iterations = result.em_iterations - em_iterations_before;
-      trace_.run(record);
+      trace_.run(RunRecord{attempt_, run, nameOf(stage), active.size(), radius,
+                           std::sqrt(state.sigma_squared), state.nu, last_run_step.translation,
+                           last_run_step.rotation, result.em_iterations - em_iterations_before});
     }
     // A stage ends when a run moves less than its epsilons: 10 epsilons before the refine stage,
     // the epsilons themselves in it. After the approach (which chooses the basin, from steps as

@@ -21,6 +21,7 @@
 #include <cstddef>
 
 #include "pda_registration/core/point_list.hpp"
+#include "pda_registration/core/registration_parameters.hpp"
 
 namespace pda_registration {
 
@@ -39,5 +40,12 @@ PointList randomSubsample(const PointList& points, size_t max_points, size_t fin
 /// itself: the same subsample as of the cloud without it.
 PointList spatialSubsample(const PointList& points, size_t max_points);
 PointList spatialSubsample(const PointList& points, size_t max_points, size_t finite_points);
+
+/// The source as the runs align it, written to `source` (whose memory is reused): `input`'s
+/// finite points (`finite_points` of them, counted by the caller), voxelised at
+/// `source_voxel_size` when that is set, then at most `max_source_points` of them, subsampled as
+/// `spread_source_budget` says. Returns whether the budget cut it.
+bool prepareAlignedSource(const PointList& input, size_t finite_points,
+                          const RegistrationParameters& parameters, PointList* source);
 
 }  // namespace pda_registration
