@@ -317,8 +317,9 @@ RegistrationResult PdaRegistration::alignUnchecked(const PointList& source_input
   RegistrationParameters within_reach = p;
   if (radius_follows_steps_) within_reach.radius = near_reach;
   if (warpPolishWarranted(result, p, state.nu) &&
-      polishOverAWarp(*index, source, *normal_map, within_reach, step_metric, outOfTime,
-                      &workspace_, &state, &result.runs, &result.em_iterations)) {
+      polishOverAWarp(*index, source, *normal_map, result.normal_voxel_size, within_reach,
+                      step_metric, outOfTime, &workspace_, &state, &result.runs,
+                      &result.em_iterations)) {
     result.T_target_source = state.T;
     result.sigma = std::sqrt(state.sigma_squared);
     result.nu = state.nu;

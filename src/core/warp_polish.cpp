@@ -1,5 +1,6 @@
 #include "pda_registration/core/warp_polish.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 
@@ -15,11 +16,17 @@ bool warpPolishWarranted(const RegistrationResult& result, const RegistrationPar
          nu > kMinDegreesOfFreedom;
 }
 
+double polishRadius(const RegistrationParameters& p, double sigma_squared, double surface_scale) {
+  if (p.min_radius >= p.radius) return p.radius;  // a radius the user fixed
+  const double floor = surface_scale > 0.0 ? std::min(p.min_radius, surface_scale) : p.min_radius;
+  return std::min(p.radius, std::max(floor, kPolishRadiusSigmas * std::sqrt(sigma_squared)));
+}
+
 bool polishOverAWarp(const TargetIndex& index, const PointList& source,
-                     const SurfaceNormalMap& normal_map, const RegistrationParameters& p,
-                     const PoseStep& step_metric, const std::function<bool()>& out_of_time,
-                     RegistrationWorkspace* workspace, EmState* state, int* runs,
-                     int* em_iterations) {
+                     const SurfaceNormalMap& normal_map, double surface_scale,
+                     const RegistrationParameters& p, const PoseStep& step_metric,
+                     const std::function<bool()>& out_of_time, RegistrationWorkspace* workspace,
+                     EmState* state, int* runs, int* em_iterations) {
   RegistrationParameters gaussian = p;
   gaussian.nu = std::numeric_limits<double>::infinity();
   gaussian.nu_mode = NuMode::kFixed;
@@ -28,8 +35,9 @@ bool polishOverAWarp(const TargetIndex& index, const PointList& source,
   RunRest rest(step_metric);
   for (int run = 0; run < kMaxWarpPolishRuns; ++run) {
     if (out_of_time()) return false;
-    findCandidateSets(index, source, polished.T, p.k, refineRadius(p, polished.sigma_squared),
-                      p.threads, &workspace->search, &workspace->candidates);
+    findCandidateSets(index, source, polished.T, p.k,
+                      polishRadius(p, polished.sigma_squared, surface_scale), p.threads,
+                      &workspace->search, &workspace->candidates);
     const Eigen::Isometry3d T_run_start = polished.T;
     bool settled = false;
     ++*runs;
