@@ -82,12 +82,13 @@ double warpedFragmentError(int layout) {
 }
 
 // Layout 3 is not in the benchmark: 5.9 cm with the normals read at the point, 4.3 at the
-// candidate (a success by the benchmark's 5 cm).
+// candidate (a success by the benchmark's 5 cm); 3.7 since the polish searches within 6 sigma.
 TEST(NormalLookup, RefineRunsBringAWarpedFragmentPairWithinFiveCentimetres) {
   EXPECT_LT(warpedFragmentError(3), 0.05);
 }
 
-// The benchmark's warped pair: 6.7 cm at the point, 5.1 at the candidate.
+// The benchmark's warped pair: 6.7 cm at the point, 5.1 at the candidate (4.9 since the polish
+// searches within 6 sigma: warp_polish_test.cpp holds it to the 5-cm line).
 TEST(NormalLookup, RefineRunsBringTheBenchmarksWarpedPairNearerItsFit) {
   EXPECT_LT(warpedFragmentError(2), 0.055);
 }

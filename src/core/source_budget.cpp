@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "pda_registration/core/point_filter.hpp"
+#include "pda_registration/core/registration_parameters.hpp"
 #include "pda_registration/core/voxel_cell.hpp"
 #include "pda_registration/core/voxel_slots.hpp"
 

@@ -21,9 +21,10 @@
 #include <cstddef>
 
 #include "pda_registration/core/point_list.hpp"
-#include "pda_registration/core/registration_parameters.hpp"
 
 namespace pda_registration {
+
+struct RegistrationParameters;  // registration_parameters.hpp: only referred to here
 
 /// An unbiased subsample of `max_points` points (every finite point equally likely, input order
 /// kept, fixed seed), or an empty list when `points` has no more than `max_points` points (use
