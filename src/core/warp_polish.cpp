@@ -18,8 +18,8 @@ bool warpPolishWarranted(const RegistrationResult& result, const RegistrationPar
 
 double polishRadius(const RegistrationParameters& p, double sigma_squared, double surface_scale) {
   if (p.min_radius >= p.radius) return p.radius;  // a radius the user fixed
-  const double floor = surface_scale > 0.0 ? std::min(p.min_radius, surface_scale) : p.min_radius;
-  return std::min(p.radius, std::max(floor, kPolishRadiusSigmas * std::sqrt(sigma_squared)));
+  const double lowest = surface_scale > 0.0 ? std::min(p.min_radius, surface_scale) : p.min_radius;
+  return std::min(p.radius, std::max(lowest, kPolishRadiusSigmas * std::sqrt(sigma_squared)));
 }
 
 bool polishOverAWarp(const TargetIndex& index, const PointList& source,

@@ -44,7 +44,7 @@ constexpr double kPolishRadiusSigmas = 6.0;
 /// decision. The refine runs' fixed floor (0.25 m) admitted points beyond 6 sigma at full weight
 /// and the largest leverage (the warped overlap's ragged edge): the warped fragment pair of seed 2
 /// at sigma 3.9 cm, 5.17 cm from its fit with the floor, 4.90 cm at 6 sigma; ten held-out warped
-/// pairs 0.2-1.0 cm nearer. The floor keeps a sparse target's samples in reach where sigma is far
+/// pairs 0.24-0.85 cm nearer. The floor keeps a sparse target's samples in reach where sigma is far
 /// below its spacing (a lidar lattice, sigma 3 mm); a radius the user fixed (min_radius >= radius)
 /// stays.
 double polishRadius(const RegistrationParameters& p, double sigma_squared, double surface_scale);
