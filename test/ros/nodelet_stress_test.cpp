@@ -214,8 +214,11 @@ TEST(NodeletStress, StaysResponsiveDropsStaleInputsAndKeepsMemoryFlat) {
   EXPECT_GE(static_cast<double>(aligned), 2.0 * duration);
   // Keeping up (ros/rate_budget.hpp): the node measured the feed's period (a 50 ms sleep after
   // each publish) and, its alignments of the 15000-point budget taking longer than half of it,
-  // shrank the budget; never below a quarter of max_source_points.
-  EXPECT_GT(period_ms, 45.0);
+  // shrank the budget; never below a quarter of max_source_points. The period is a running mean
+  // of arrival intervals weighing the newest by 0.2, read at a moment of the run: a cloud that
+  // waited behind a busy callback and arrived right after the one before pulls it 10 ms down
+  // (44.8 ms once, 2026-12-06), so the bound allows two such; a count of both feeds would be 25.
+  EXPECT_GT(period_ms, 30.0);
   EXPECT_LT(period_ms, 100.0);
   EXPECT_LT(budget, 15000.0) << "alignments over half the period, yet the full budget";
   EXPECT_GE(budget, 3750.0);
