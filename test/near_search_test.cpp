@@ -90,6 +90,36 @@ TEST(NearSearch, ReplacesAConvergedAnswerIfItFitsMoreAndAFailureIfNotQuestionabl
   EXPECT_FALSE(nearAnswerReplaces(true, near, false, true));
 }
 
+TEST(NearSearch, RejoinsAUsualAnswerWithinItsSigmasThatItsRefineRunsWouldReach) {
+  RegistrationParameters p;  // radius 1 m, min_radius 0.25 m: a near search reaches 0.5 m at least
+  UsualAnswer usual;
+  usual.sigma = 0.05;  // the usual refine runs searched 6 sigma = 0.3 m
+  EXPECT_TRUE(rejoinsUsualAnswer(p, usual, 0.0));
+  EXPECT_TRUE(rejoinsUsualAnswer(p, usual, 0.99 * kRejoinSigmas * usual.sigma));
+  EXPECT_FALSE(rejoinsUsualAnswer(p, usual, 1.01 * kRejoinSigmas * usual.sigma));
+  // 6 sigma = 0.6 m: the usual refine runs searched further than a near search's may.
+  usual.sigma = 0.1;
+  EXPECT_FALSE(rejoinsUsualAnswer(p, usual, 0.0));
+}
+
+TEST(NearSearch, RejoinsOnlyAnAnswerOfTheUsualRefineRuns) {
+  RegistrationResult usual;
+  usual.converged = true;
+  usual.sigma = 0.05;
+  EXPECT_TRUE(nearSearchCanRejoin(usual));
+  const auto without = [&](bool RegistrationResult::*flag, bool value) {
+    RegistrationResult changed = usual;
+    changed.*flag = value;
+    return nearSearchCanRejoin(changed);
+  };
+  EXPECT_FALSE(without(&RegistrationResult::converged, false));
+  EXPECT_FALSE(without(&RegistrationResult::out_of_time, true));
+  EXPECT_FALSE(without(&RegistrationResult::local_start, true));     // the outlier class's model
+  EXPECT_FALSE(without(&RegistrationResult::roles_swapped, true));   // the other direction's
+  EXPECT_FALSE(without(&RegistrationResult::search_widened, true));  // a wider radius
+  EXPECT_FALSE(without(&RegistrationResult::warp_polished, true));   // Gaussian weights
+}
+
 // Layout 5 sharing a third of the office (fragment length 0.4) from 5 deg / 0.25 m (perturbation
 // 4): the usual alignment and its fallbacks do not converge ("unresolved": the unshared two thirds
 // hold sigma at the width of the search). The near search's approach, once settled, stops

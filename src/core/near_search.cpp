@@ -20,4 +20,16 @@ bool nearAnswerReplaces(bool usual_converged, const RegistrationResult& near,
   return usual_converged ? near_fits_more : !near_questionable;
 }
 
+bool nearSearchCanRejoin(const RegistrationResult& usual) {
+  return usual.converged && !usual.out_of_time && !usual.local_start && !usual.roles_swapped &&
+         !usual.search_widened && !usual.warp_polished && usual.sigma > 0.0;
+}
+
+bool rejoinsUsualAnswer(const RegistrationParameters& p, const UsualAnswer& usual,
+                        double rms_displacement) {
+  const double shortest_reach = stepFollowingRadius(p, 0.0);
+  return refineRadius(p, usual.sigma * usual.sigma) <= shortest_reach &&
+         rms_displacement <= kRejoinSigmas * usual.sigma;
+}
+
 }  // namespace pda_registration

@@ -30,14 +30,28 @@ void PdaRegistration::tryNearSearch(const PointList& source, const Eigen::Isomet
   Associations near_associations;
   std::vector<AttemptRecord> near_attempts;  // noted once it is known whether the answer is kept
   RegistrationResult near;
+  UsualAnswer usual;
+  usual.T_target_source = result->T_target_source;
+  usual.sigma = result->sigma;
   {
     const AttemptLabel label(&attempt_, "near search");
     in_near_search_ = true;
+    near_rejoined_ = false;
     deferred_attempts_ = trace_.attempt ? &near_attempts : nullptr;
     near = alignWithFallbacks(source, T_initial, started,
-                              associations ? &near_associations : nullptr, /*near_search=*/true);
+                              associations ? &near_associations : nullptr, /*near_search=*/true,
+                              nearSearchCanRejoin(*result) ? &usual : nullptr);
     in_near_search_ = false;
     deferred_attempts_ = nullptr;
+  }
+  if (near_rejoined_) {
+    // Back at the usual answer: it stands, confirmed (near_search.hpp).
+    near_rejoined_ = false;
+    for (AttemptRecord& record : near_attempts) {
+      record.adopted = false;
+      trace_.attempt(record);
+    }
+    return;
   }
   near.near_search = true;
   const bool near_questionable = questionable(near, T_initial);

@@ -101,6 +101,7 @@ RegistrationResult PdaRegistration::align(const PointList& source,
   }
   radius_follows_steps_ = false;  // however the attempts ended (an exception skips their resets)
   in_near_search_ = false;
+  near_rejoined_ = false;
   deferred_attempts_ = nullptr;
   result.time_ms =
       std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
@@ -111,7 +112,8 @@ RegistrationResult PdaRegistration::alignWithFallbacks(const PointList& source,
                                                        const Eigen::Isometry3d& T_initial,
                                                        std::chrono::steady_clock::time_point start,
                                                        Associations* associations,
-                                                       bool near_search) {
+                                                       bool near_search,
+                                                       const UsualAnswer* rejoin) {
   // A first attempt whose refine runs leave nu at its floor is questioned there by the second
   // starts (second_start_attempts.cpp); otherwise they may follow its end.
   EarlySecondStarts early;
@@ -122,12 +124,15 @@ RegistrationResult PdaRegistration::alignWithFallbacks(const PointList& source,
       };
   AttemptOptions first_attempt;
   first_attempt.at_nu_floor = &at_nu_floor;
+  first_attempt.rejoin = rejoin;
   // A near search's first attempt, and the second starts it asks at nu's floor, search as far as
   // their steps reach (near_search.hpp); the attempts after it, as usual.
   radius_follows_steps_ = near_search;
   RegistrationResult result = alignUnchecked(source, T_initial, associations, first_attempt);
   radius_follows_steps_ = false;
   traceAttempt(result, /*adopted=*/!early.adopted, start);
+  // A near search back at the usual answer would only ask what the usual alignment asked already.
+  if (near_rejoined_) return result;
   if (early.adopted) {
     adoptNested(true, &early.adopted_result, &early.adopted_associations, &result, associations);
   } else if (early.tried) {

@@ -278,6 +278,17 @@ RegistrationResult PdaRegistration::alignUnchecked(const PointList& source_input
         rest.reset();  // all three look back over this stage's steps only
         extrapolation.reset();
         tail.reset();
+        // A near search back at the usual answer stops: its refine runs would come to the
+        // usual answer's rest (near_search.hpp).
+        if (options.rejoin) {
+          const double apart = rmsDisplacement(source, state.T, options.rejoin->T_target_source);
+          if (rejoinsUsualAnswer(p, *options.rejoin, apart)) {
+            near_rejoined_ = true;
+            result.T_target_source = state.T;
+            result.reason = "near search: back at the usual answer";
+            return result;
+          }
+        }
       }
       continue;  // convergence is only declared in the refine stage
     }

@@ -21,10 +21,18 @@
 // (scripts/benchmark_low_overlap, L = 0.4) from 10 deg / 0.5 m: 24 -> 34 of 40 within 5 cm; from
 // 5 deg 36 -> 40.
 //
+// Where its approach or settle stage ends within 3 sigma of a converged usual answer (and the
+// usual refine runs searched no further than it may), the near search has come back to that
+// answer: it stops there, and the usual answer stands (rejoinsUsualAnswer). Its refine runs would
+// come to the same rest and its fallbacks ask what the usual ones asked: factory_p64 on its 0.5-m
+// map from 10 deg ran 15 more runs, two second starts and a local start into the same answer.
+//
 // The near answer replaces a converged usual answer only if it fits more of the overlap (one
 // yardstick, second_start.hpp's test); it replaces a failed one only if it converged and is not
 // questionable itself (else a converged false fit would stand where the usual answer honestly
 // said "not converged").
+
+#include <Eigen/Geometry>
 
 #include "pda_registration/core/registration_parameters.hpp"
 #include "pda_registration/core/registration_result.hpp"
@@ -50,5 +58,33 @@ bool nearSearchWarranted(const RegistrationResult& usual, bool usual_questionabl
 /// (fitsMoreOfTheOverlap, false when it did not converge).
 bool nearAnswerReplaces(bool usual_converged, const RegistrationResult& near,
                         bool near_questionable, bool near_fits_more);
+
+/// The usual answer as a near search sees it, where the near search can rejoin it: converged by
+/// the usual model's refine runs (nearSearchCanRejoin).
+struct UsualAnswer {
+  Eigen::Isometry3d T_target_source = Eigen::Isometry3d::Identity();
+  double sigma = 0.0;
+};
+
+/// How near the usual answer, in its sigmas of RMS displacement of the source, a stage of the near
+/// search must end to have rejoined it: the inlier yardstick (3 sigma), half the first refine
+/// run's search (6 sigma), so the points' candidates there are the usual answer's. The wide VLP-16
+/// scan pairs settle 2.5-2.8 sigma from their usual answer and refine to within 2 mm of it; a
+/// false rest the near search turns is metres away.
+constexpr double kRejoinSigmas = 3.0;
+
+/// Whether a near search can rejoin `usual`: it converged, and by the model and search the near
+/// search's refine runs use (not a local start's outlier class, the other direction's roles, a
+/// wider search's radius or a warp polish's Gaussian weights).
+bool nearSearchCanRejoin(const RegistrationResult& usual);
+
+/// Whether a near search whose approach or settle stage ends `rms_displacement` from the usual
+/// answer (the source points' RMS displacement between the two poses) has rejoined it: its refine
+/// runs would start within kRejoinSigmas of the usual answer and search as far as the usual
+/// refine runs did there (6 sigma within the shortest reach a near search keeps), so they would
+/// come to the same rest; its second starts, local start and the rest would then ask what the
+/// usual alignment asked already.
+bool rejoinsUsualAnswer(const RegistrationParameters& p, const UsualAnswer& usual,
+                        double rms_displacement);
 
 }  // namespace pda_registration

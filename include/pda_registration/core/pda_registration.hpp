@@ -30,6 +30,7 @@
 namespace pda_registration {
 
 struct EmState;
+struct UsualAnswer;
 
 /// What one attempt of PdaRegistration::align() is besides its start (internal to the engine).
 struct AttemptOptions {
@@ -41,6 +42,9 @@ struct AttemptOptions {
   /// Asked once, after the first refine run that leaves nu (estimated) at its floor, with the
   /// run's state and the target it searched; true: the attempt stops there, superseded.
   const std::function<bool(const EmState&, const TargetIndex&)>* at_nu_floor = nullptr;
+  /// A near search's first attempt: it stops (not converged) once its approach or settle stage
+  /// ends where this usual answer is (rejoinsUsualAnswer, near_search.hpp).
+  const UsualAnswer* rejoin = nullptr;
 };
 
 class PdaRegistration {
@@ -85,10 +89,13 @@ class PdaRegistration {
   TargetIndexing indexing() const;
   /// The first attempt and the fallbacks its result calls for (second starts, a local start, the
   /// other direction, a wider search); `near_search`: the first attempt (and the second starts it
-  /// asks at nu's floor) searches as far as its steps reach (near_search.hpp).
+  /// asks at nu's floor) searches as far as its steps reach (near_search.hpp); `rejoin` (a near
+  /// search's only): the usual answer, where the first attempt stops if it comes back to it, and
+  /// the fallbacks with it.
   RegistrationResult alignWithFallbacks(const PointList& source, const Eigen::Isometry3d& T_initial,
                                         std::chrono::steady_clock::time_point start,
-                                        Associations* associations, bool near_search = false);
+                                        Associations* associations, bool near_search = false,
+                                        const UsualAnswer* rejoin = nullptr);
   /// A questionable `result` (localStartWarranted): alignWithFallbacks() once more from the seed as
   /// a near search, its answer kept as near_search.hpp says (near_search_attempt.cpp).
   void tryNearSearch(const PointList& source, const Eigen::Isometry3d& T_initial,
@@ -194,6 +201,7 @@ class PdaRegistration {
   const char* attempt_ = "first";  // the attempt alignUnchecked() is running, for the trace
   bool radius_follows_steps_ = false;  // approach and settle radius: stepFollowingRadius()
   bool in_near_search_ = false;        // the attempts running are a near search's
+  bool near_rejoined_ = false;         // its first attempt stopped at the usual answer
   // A near search's attempt records wait here until it is known whether its answer is adopted.
   std::vector<AttemptRecord>* deferred_attempts_ = nullptr;
 };
