@@ -25,7 +25,7 @@
 // usual refine runs searched no further than it may), the near search has come back to that
 // answer: it stops there, and the usual answer stands (rejoinsUsualAnswer). Its refine runs would
 // come to the same rest and its fallbacks ask what the usual ones asked: factory_p64 on its 0.5-m
-// map from 10 deg ran 15 more runs, two second starts and a local start into the same answer.
+// map from 10 deg ran 15 more runs, a second start and a local start into the same answer.
 //
 // The near answer replaces a converged usual answer only if it fits more of the overlap (one
 // yardstick, second_start.hpp's test); it replaces a failed one only if it converged and is not
