@@ -227,7 +227,8 @@ TEST(SharedDataThinned, ARigidLidarMapIsNotPolished) {
 // (5.5 mm) but questionable (nu at its floor after moving the source further than the radius), so
 // a near search runs. Its approach comes to rest 5 mm from the usual answer (sigma 5.9 cm): back
 // at it, the near search stops there, before its refine runs, second starts and local start
-// repeat what the usual alignment asked (near_search.hpp; on an Intel Xeon 240 -> 150 ms a trial).
+// repeat what the usual alignment asked (near_search.hpp; median of 10 trials on an Intel Xeon
+// 240 -> 130 ms).
 TEST(SharedDataThinned, ANearSearchBackAtTheUsualAnswerStopsThere) {
   const auto trials = alignOnThinnedTarget("factory_p64", 0.5, 10.0, 0.5, {1u, 2u});
   ASSERT_EQ(trials.size(), 2u);
