@@ -6,10 +6,13 @@
 
 #include <cstdint>
 #include <map>
+#include <memory>
 #include <string>
+#include <vector>
 
 #include "pda_registration/core/error_metrics.hpp"
 #include "pda_registration/core/near_search.hpp"
+#include "pda_registration/core/opening_runs.hpp"
 #include "pda_registration/simulation/map_simulation.hpp"
 #include "test_support/simulated_cases.hpp"
 #include "test_support/traced_alignment.hpp"
@@ -194,6 +197,112 @@ TEST(NearSearch, RefineRunsSearchNoFurtherThanTheSettledApproach) {
   }
   EXPECT_GT(refine_runs, 0);
   EXPECT_LT(reach, RegistrationParameters().radius);
+}
+
+// The kept opening runs (opening_runs.hpp) apply only to the inputs they ran on, and only up to
+// the first run after which a near search's radius would be shorter.
+TEST(NearSearch, ResumesAfterTheOpeningRunsOnlyOnTheirInputs) {
+  const PointList source = {Point(0, 0, 0), Point(1, 0, 0), Point(0, 1, 0)};
+  const auto index = std::make_shared<const TargetIndex>(source);
+  const auto normals = std::make_shared<const SurfaceNormalMap>(source, 0.5);
+  Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
+  T.translation() = Eigen::Vector3d(0.1, 0.0, 0.0);
+  const PoseStep metric = PoseStep::over(source);
+
+  std::vector<RunRecord> traced;
+  AlignmentTrace trace;
+  trace.run = [&traced](const RunRecord& r) { traced.push_back(r); };
+  OpeningRuns opening;
+  RunLoopState loop(metric);
+  RegistrationResult result;
+  EXPECT_EQ(opening.resume(&source, index.get(), normals.get(), T, "near search", trace, &loop,
+                           &result),
+            1);  // nothing kept
+
+  opening.begin(&source, index, normals, T);
+  for (int run = 1; run <= 3; ++run) {
+    RunLoopState after(metric);
+    after.state.sigma_squared = 0.01 * run;
+    after.work = 0.25 * run;
+    RegistrationResult so_far;
+    so_far.runs = run;
+    so_far.em_iterations = 5 * run;
+    RunRecord record;
+    record.attempt = "first";
+    record.run = run;
+    opening.keep(after, so_far, record, /*next_radius_whole=*/run < 2);
+  }
+  EXPECT_FALSE(opening.open());  // run 3 was past the second, after which the radius shrank
+
+  Eigen::Isometry3d elsewhere = T;
+  elsewhere.translation().x() += 1e-9;
+  const auto other_index = std::make_shared<const TargetIndex>(source);
+  const PointList other_source = source;
+  EXPECT_EQ(opening.resume(&source, index.get(), normals.get(), elsewhere, "near search", trace,
+                           &loop, &result),
+            1);
+  EXPECT_EQ(opening.resume(&source, other_index.get(), normals.get(), T, "near search", trace,
+                           &loop, &result),
+            1);
+  EXPECT_EQ(opening.resume(&other_source, index.get(), normals.get(), T, "near search", trace,
+                           &loop, &result),
+            1);
+  EXPECT_TRUE(traced.empty());
+  EXPECT_EQ(result.runs, 0);
+
+  EXPECT_EQ(opening.resume(&source, index.get(), normals.get(), T, "near search", trace, &loop,
+                           &result),
+            3);
+  EXPECT_DOUBLE_EQ(loop.state.sigma_squared, 0.02);
+  EXPECT_DOUBLE_EQ(loop.work, 0.5);
+  EXPECT_EQ(result.runs, 2);
+  EXPECT_EQ(result.em_iterations, 10);
+  ASSERT_EQ(traced.size(), 2u);
+  for (int i = 0; i < 2; ++i) {
+    EXPECT_EQ(traced[i].run, i + 1);
+    EXPECT_EQ(std::string(traced[i].attempt), "near search");
+    EXPECT_TRUE(traced[i].replayed);
+  }
+
+  opening.clear();
+  EXPECT_EQ(opening.resume(&source, index.get(), normals.get(), T, "near search", trace, &loop,
+                           &result),
+            1);
+}
+
+// Layout 5 sharing a third from 5 deg / 0.25 m (perturbation 4), as above: the near search's
+// first attempt starts where the usual first attempt started, and its runs are that attempt's to
+// the digit while its radius is the whole radius. It takes them over (replayed, not run again) and
+// runs on from the first whose radius follows its steps.
+TEST(NearSearch, TakesOverTheUsualOpeningRunsAndRunsOnFromThere) {
+  const simulation::SimulatedMaps& maps = lowOverlapMaps(5);
+  const TracedAlignment traced = testing_support::alignTraced(maps, 5.0, 0.25, 4);
+  const RegistrationParameters p;
+  std::vector<RunRecord> near;
+  for (const RunRecord& run : traced.runs) {
+    if (std::string(run.attempt) == "near search") near.push_back(run);
+  }
+  ASSERT_FALSE(near.empty());
+  size_t replayed = 0;
+  while (replayed < near.size() && near[replayed].replayed) ++replayed;
+  ASSERT_GE(replayed, 1u);
+  ASSERT_LE(replayed, traced.first_runs.size());
+  for (size_t i = 0; i < replayed; ++i) {
+    const RunRecord& usual = traced.first_runs[i];
+    EXPECT_EQ(near[i].run, usual.run);
+    EXPECT_EQ(std::string(near[i].stage), usual.stage);
+    EXPECT_EQ(near[i].radius, p.radius);
+    EXPECT_EQ(near[i].sigma, usual.sigma);
+    EXPECT_EQ(near[i].step_translation, usual.step_translation);
+    EXPECT_EQ(near[i].em_iterations, usual.em_iterations);
+  }
+  // The run after them is the near search's own, at a radius its steps set.
+  ASSERT_LT(replayed, near.size());
+  EXPECT_FALSE(near[replayed].replayed);
+  EXPECT_EQ(near[replayed].run, near[replayed - 1].run + 1);
+  EXPECT_LT(near[replayed].radius, p.radius);
+  for (size_t i = replayed; i < near.size(); ++i) EXPECT_FALSE(near[i].replayed);
+  EXPECT_TRUE(nearSearchAnswerWithin(maps, traced.result, 0.02));
 }
 
 // The wide 64-beam / VLP-16 scan pair of seed 5 from 10 deg / 0.5 m (perturbation 8): the usual

@@ -83,6 +83,7 @@ RegistrationResult PdaRegistration::align(const PointList& source,
   if (associations) *associations = Associations();
   const auto start = std::chrono::steady_clock::now();
   RegistrationResult result;
+  opening_runs_.clear();
   try {
     result = alignWithFallbacks(source, T_target_source_initial, start, associations);
     // Where that answer is questionable (or a kept local start), all of it once more, searching
@@ -103,6 +104,7 @@ RegistrationResult PdaRegistration::align(const PointList& source,
   in_near_search_ = false;
   near_rejoined_ = false;
   deferred_attempts_ = nullptr;
+  opening_runs_.clear();  // holds the target's index
   result.time_ms =
       std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
   return result;

@@ -15,8 +15,7 @@
 #include "pda_registration/core/final_statistics.hpp"
 #include "pda_registration/core/local_start.hpp"
 #include "pda_registration/core/near_search.hpp"
-#include "pda_registration/core/nearest_rotation.hpp"
-#include "pda_registration/core/point_filter.hpp"
+#include "pda_registration/core/opening_runs.hpp"
 #include "pda_registration/core/run_extrapolation.hpp"
 #include "pda_registration/core/run_rest.hpp"
 #include "pda_registration/core/run_tail.hpp"
@@ -32,18 +31,6 @@ const char* nameOf(Stage stage) {
   return stage == Stage::kApproach ? "approach" : (stage == Stage::kSettle ? "settle" : "refine");
 }
 
-// Accepts a slightly non-orthonormal rotation (text files round it) and snaps it back; rejects
-// anything that is not close to a rigid transform.
-bool sanitiseInitialGuess(const Eigen::Isometry3d& initial, Eigen::Isometry3d* out) {
-  if (!initial.matrix().allFinite()) return false;
-  Eigen::Matrix3d rotation;
-  if (!nearestRotation(initial.linear(), &rotation)) return false;
-  *out = Eigen::Isometry3d::Identity();
-  out->linear() = rotation;
-  out->translation() = initial.translation();
-  return true;
-}
-
 }  // namespace
 
 RegistrationResult PdaRegistration::alignUnchecked(const PointList& source_input,
@@ -57,62 +44,12 @@ RegistrationResult PdaRegistration::alignUnchecked(const PointList& source_input
   RegistrationResult result;
   result.T_target_source = T_target_source_initial;
 
-  const std::string parameter_error = validateParameters(p);
-  if (!parameter_error.empty()) {
-    result.reason = "invalid parameters: " + parameter_error;
-    return result;
-  }
-  Eigen::Isometry3d T;
-  if (!sanitiseInitialGuess(T_target_source_initial, &T)) {
-    result.reason = "initial transform is not a finite rigid transform";
-    return result;
-  }
-  result.target_points_dropped = target_map_.droppedPoints();
-  result.target_points_total = target_map_.cloudSize();
-  if (!hasTarget()) {
-    result.reason = "target cloud is empty (no finite points)";
-    return result;
-  }
-
-  PointList& source = workspace_.source;
-  workspace_.search.forget();  // new points in the same memory, perhaps a new target
-  const size_t finite_points = countFinitePoints(source_input);
-  result.source_points_dropped = source_input.size() - finite_points;
-  const bool budgeted_source = prepareAlignedSource(source_input, finite_points, p, &source);
-  result.source_points_used = source.size();
-  if (source.size() < static_cast<size_t>(p.min_correspondences)) {
-    std::ostringstream reason;
-    reason << "source cloud has " << source.size() << " finite points ("
-           << result.source_points_dropped << " non-finite dropped); at least "
-           << p.min_correspondences << " are needed";
-    result.reason = reason.str();
-    return result;
-  }
-
-  // A target much finer than a budgeted source samples it is indexed as its voxel means at the
-  // source's spacing; a large one around the region this source can reach from its seed.
-  followSourceSpacing(source, budgeted_source);
-  const TargetIndexing how = indexing();
-  AlignedBox reach;
-  if (target_map_.croppingApplies(how)) {
-    reach = reachableRegion(source, T, p.crop_max_translation,
-                            p.crop_max_rotation_deg * M_PI / 180.0, p.radius);
-  }
-  const size_t builds_before = target_map_.builds();
-  if (!target_map_.prepare(how, reach)) {
-    result.reason =
-        "no overlap: the target has no point within reach of the source (bounds "
-        "plus crop_max_translation, crop_max_rotation_deg and radius)";
-    return result;
-  }
-  if (target_map_.builds() != builds_before) result.target_index_ms = target_map_.lastBuildMs();
-  result.target_cropped = target_map_.cropped();
-  result.target_subset_voxel = target_map_.subsetVoxel();
-  result.normal_voxel_size = target_map_.normalVoxelSize();
-  const std::shared_ptr<const TargetIndex> index = target_map_.index();
-  const std::shared_ptr<const SurfaceNormalMap> normal_map =
-      target_map_.normals() ? target_map_.normals() : std::make_shared<const SurfaceNormalMap>();
-  result.target_points_used = index->size();
+  AttemptInputs inputs;
+  if (!prepareAttempt(source_input, T_target_source_initial, &inputs, &result)) return result;
+  Eigen::Isometry3d T = inputs.T;
+  const PointList& source = workspace_.source;
+  const std::shared_ptr<const TargetIndex> index = inputs.index;
+  const std::shared_ptr<const SurfaceNormalMap> normal_map = inputs.normal_map;
 
   // Three stages, each until a run moves less than 10 epsilons (the last: less than the
   // epsilons). Approach: the full radius on a strided subset of the source (these runs only need
@@ -128,32 +65,43 @@ RegistrationResult PdaRegistration::alignUnchecked(const PointList& source_input
   Stage stage = p.max_runs == 1 ? Stage::kRefine
                                 : (coarse_source.empty() ? Stage::kSettle : Stage::kApproach);
 
-  EmState state;
+  // What one run hands the next (opening_runs.hpp), by its parts' names.
+  const PoseStep step_metric = PoseStep::over(source);
+  RunLoopState loop(step_metric);
+  EmState& state = loop.state;
   state.T = T;
   state.nu = p.nu;
   state.outlier_class = local_start;
   if (p.sigma_mode == SigmaMode::kFixed) state.sigma_squared = p.fixed_sigma * p.fixed_sigma;
   CandidateSets& candidates = workspace_.candidates;
-  Increment last_run_step{0.0, 0.0};
-  double last_rms_step = 0.0;  // the last run's RMS displacement of the points it aligned
-  bool em_settled = false;  // did the last run's EM loop stop on the epsilons?
+  Increment& last_run_step = loop.last_run_step;
+  double& last_rms_step = loop.last_rms_step;
+  bool& em_settled = loop.em_settled;
   bool asked_at_nu_floor = false;
-
   // max_runs bounds the work, counted in runs over the whole source: an approach run over the
   // subset counts as the subset's share. Sliding along a valley of the ground can take the
   // approach many cheap runs (a lidar scan from 10-20 deg away: 40-150 of them).
-  double work = 0.0;
-  const PoseStep step_metric = PoseStep::over(source);
-  RunExtrapolation extrapolation(step_metric);
-  RunRest rest(step_metric);
-  RunTail tail(step_metric);
+  double& work = loop.work;
+  RunExtrapolation& extrapolation = loop.extrapolation;
+  RunRest& rest = loop.rest;
+  RunTail& tail = loop.tail;
   const auto outOfTime = [&] {
     return p.time_limit_ms > 0.0 &&
            std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - started)
                    .count() > p.time_limit_ms;
   };
   double near_reach = p.radius;  // a near search's last approach or settle radius
-  for (int run = 1; work < p.max_runs; ++run) {
+  // The usual first attempt keeps its opening runs; a near search's first attempt resumes after
+  // them (opening_runs.hpp).
+  const bool first_attempt = options.at_nu_floor && !local_start && !abandon_in;
+  const bool keep_opening = first_attempt && !radius_follows_steps_;
+  if (keep_opening) opening_runs_.begin(&source_input, index, normal_map, T);
+  const int first_run =
+      first_attempt && radius_follows_steps_
+          ? opening_runs_.resume(&source_input, index.get(), normal_map.get(), T, attempt_,
+                                 trace_, &loop, &result)
+          : 1;
+  for (int run = first_run; work < p.max_runs; ++run) {
     if (run > 1 && outOfTime()) {
       result.out_of_time = true;
       break;
@@ -200,12 +148,14 @@ RegistrationResult PdaRegistration::alignUnchecked(const PointList& source_input
       return result;
     }
     last_run_step = incrementBetween(T_run_start, state.T);
-    if (radius_follows_steps_) last_rms_step = rmsDisplacement(active, T_run_start, state.T);
-    if (trace_.run) {
-      trace_.run(RunRecord{attempt_, run, nameOf(stage), active.size(), radius,
-                           std::sqrt(state.sigma_squared), state.nu, last_run_step.translation,
-                           last_run_step.rotation, result.em_iterations - em_iterations_before});
+    const bool keeping = keep_opening && opening_runs_.open();
+    if (radius_follows_steps_ || keeping) {
+      last_rms_step = rmsDisplacement(active, T_run_start, state.T);
     }
+    const RunRecord record{attempt_, run, nameOf(stage), active.size(), radius,
+                           std::sqrt(state.sigma_squared), state.nu, last_run_step.translation,
+                           last_run_step.rotation, result.em_iterations - em_iterations_before};
+    if (trace_.run) trace_.run(record);
     // A stage ends when a run moves less than its epsilons: 10 epsilons before the refine stage,
     // the epsilons themselves in it. After the approach (which chooses the basin, from steps as
     // wide as sigma) it also ends once the distance still to go is negligible against sigma
@@ -273,7 +223,12 @@ RegistrationResult PdaRegistration::alignUnchecked(const PointList& source_input
     // poses 1.4 mm apart (above its 10 epsilons) until the work bound, "not converged" at 5 mm.
     const bool cycling = rest.cameBack(T_run_start, state.T);
     if (stage != Stage::kRefine) {
+      if (keeping && !(stage_done || cycling)) {
+        opening_runs_.keep(loop, result, record,
+                           stepFollowingRadius(p, last_rms_step) == p.radius);
+      }
       if (stage_done || cycling) {
+        opening_runs_.stop();
         stage = stage == Stage::kApproach ? Stage::kSettle : Stage::kRefine;
         rest.reset();  // all three look back over this stage's steps only
         extrapolation.reset();

@@ -15,6 +15,7 @@ AlignmentTrace jsonLinesTrace(std::ostream* out,
     line.add("points", r.points).add("radius", r.radius).add("sigma", r.sigma).add("nu", r.nu);
     line.add("step_m", r.step_translation).add("step_deg", r.step_rotation * 180.0 / M_PI);
     line.add("em_iterations", r.em_iterations);
+    if (r.replayed) line.add("replayed", true);
     *out << line.str() << '\n';
   };
   trace.attempt = [out, error_from_truth](const AttemptRecord& a) {

@@ -30,6 +30,9 @@ struct RunRecord {
   double step_translation = 0.0;  ///< how far the run moved the pose [length]
   double step_rotation = 0.0;     ///< [rad]
   int em_iterations = 0;          ///< this run's E/M iterations
+  /// A near search's run taken over from the usual first attempt, which ran it to the digit
+  /// (opening_runs.hpp): not run again.
+  bool replayed = false;
 };
 
 /// One attempt, when it has ended: what it concluded and whether align() adopted it as its answer

@@ -18,6 +18,7 @@
 
 #include "pda_registration/core/alignment_trace.hpp"
 #include "pda_registration/core/associations.hpp"
+#include "pda_registration/core/opening_runs.hpp"
 #include "pda_registration/core/point_list.hpp"
 #include "pda_registration/core/registration_parameters.hpp"
 #include "pda_registration/core/registration_result.hpp"
@@ -110,6 +111,16 @@ class PdaRegistration {
                                     const Eigen::Isometry3d& T_target_source_initial,
                                     Associations* associations,
                                     const AttemptOptions& options = AttemptOptions());
+  /// What an attempt runs on (attempt_inputs.cpp): the initial guess as a rigid transform, and
+  /// the target's index and normals for the source as aligned (workspace_.source).
+  struct AttemptInputs {
+    Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
+    std::shared_ptr<const TargetIndex> index;
+    std::shared_ptr<const SurfaceNormalMap> normal_map;
+  };
+  /// Checks the parameters, the guess and both clouds and prepares them; false: `result` says why.
+  bool prepareAttempt(const PointList& source_input, const Eigen::Isometry3d& T_initial,
+                      AttemptInputs* inputs, RegistrationResult* result);
   /// What second starts questioned at the first attempt's nu floor left (second_start_attempts.cpp).
   struct EarlySecondStarts {
     bool tried = false;    ///< the question was warranted and the starts ran
@@ -202,6 +213,7 @@ class PdaRegistration {
   bool radius_follows_steps_ = false;  // approach and settle radius: stepFollowingRadius()
   bool in_near_search_ = false;        // the attempts running are a near search's
   bool near_rejoined_ = false;         // its first attempt stopped at the usual answer
+  OpeningRuns opening_runs_;  // the usual first attempt's, for a near search to resume after
   // A near search's attempt records wait here until it is known whether its answer is adopted.
   std::vector<AttemptRecord>* deferred_attempts_ = nullptr;
 };
