@@ -136,6 +136,48 @@ TEST(CandidateSets, AnswersFromKeptPointsEqualAFreshSearch) {
   EXPECT_GT(from_kept, 3000u * 10);
 }
 
+// The approach's answers for its subset carry over to the whole source (the settle stage's first
+// run): the subset's points are answered from their kept target points, exactly as a fresh search,
+// and the others are searched; answers for other points, or a "subset" out of order, carry nothing.
+TEST(CandidateSets, SubsetAnswersCarryOverToTheWholeSourceExactly) {
+  const TargetIndex target(cloudWithTies(20000, 5));
+  std::mt19937 random(6);
+  std::uniform_real_distribution<double> coordinate(-0.2, 2.2), height(-0.05, 0.05);
+  PointList source;
+  for (int i = 0; i < 2000; ++i) {
+    source.emplace_back(coordinate(random), coordinate(random), height(random));
+  }
+  source.push_back(source[10]);  // an exact duplicate, in the subset only as its last point
+  PointList subset;
+  for (size_t i = 0; i < source.size(); i += 4) subset.push_back(source[i]);
+  const Eigen::Isometry3d T_subset = randomPerturbation(1.0, 0.02, 7);
+  const Eigen::Isometry3d T_whole = T_subset * randomPerturbation(0.01, 0.0005, 8);
+
+  CandidateSearchBuffers buffers;
+  CandidateSets sets;
+  findCandidateSets(target, subset, T_subset, 5, 0.3, 1, &buffers, &sets);
+  buffers.carryToSuperset(subset, source);
+  findCandidateSets(target, source, T_whole, 5, 0.3, 2, &buffers, &sets);
+  expectSameCandidates(sets, findCandidateSets(target, source, T_whole, 5, 0.3, 1));
+  // Most of the subset's points, and nothing else, were answered without a search.
+  EXPECT_GT(buffers.answered_from_kept, subset.size() * 9 / 10);
+  EXPECT_LE(buffers.answered_from_kept, subset.size());
+
+  // Answers for other points than the subset: nothing carries, every point is searched.
+  findCandidateSets(target, subset, T_subset, 5, 0.3, 1, &buffers, &sets);
+  buffers.carryToSuperset(source, source);
+  findCandidateSets(target, source, T_whole, 5, 0.3, 1, &buffers, &sets);
+  EXPECT_EQ(buffers.answered_from_kept, 0u);
+  // A subset out of the whole's order: nothing carries either.
+  PointList shuffled = subset;
+  std::reverse(shuffled.begin(), shuffled.end());
+  findCandidateSets(target, shuffled, T_subset, 5, 0.3, 1, &buffers, &sets);
+  buffers.carryToSuperset(shuffled, source);
+  findCandidateSets(target, source, T_whole, 5, 0.3, 1, &buffers, &sets);
+  EXPECT_EQ(buffers.answered_from_kept, 0u);
+  expectSameCandidates(sets, findCandidateSets(target, source, T_whole, 5, 0.3, 1));
+}
+
 TEST(TargetIndex, ExtendedEqualsRebuiltOnARealGrowingMap) {
   testing_support::SharedCase factory;
   std::string error;

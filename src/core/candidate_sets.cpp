@@ -14,6 +14,39 @@ size_t CandidateSets::sourcePointsWithCandidates() const {
   return count;
 }
 
+void CandidateSearchBuffers::carryToSuperset(const PointList& subset, const PointList& superset) {
+  const size_t m = subset.size();
+  if (!have_answers || source != subset.data() || m == 0 || found.size() != m ||
+      slots.size() % m != 0) {
+    return;
+  }
+  const size_t stride = slots.size() / m;
+  std::vector<size_t> carried_slots(superset.size() * stride);
+  std::vector<double> carried_distances(superset.size() * stride);
+  std::vector<size_t> carried_found(superset.size(), 0), carried_kept(superset.size(), 0);
+  // No answer: a bound of 0 lets no point be answered without a search.
+  std::vector<double> carried_bound(superset.size(), 0.0);
+  // The subset keeps the superset's order: each of its points is the next equal one (an equal
+  // point has the same answer, whichever copy it is matched to).
+  size_t j = 0;
+  for (size_t c = 0; c < m; ++c) {
+    while (j < superset.size() && !(superset[j].array() == subset[c].array()).all()) ++j;
+    if (j == superset.size()) return;  // not a subset in order: leave the buffers as they were
+    std::copy_n(&slots[c * stride], stride, &carried_slots[j * stride]);
+    std::copy_n(&squared_distances[c * stride], stride, &carried_distances[j * stride]);
+    carried_found[j] = found[c];
+    carried_kept[j] = kept[c];
+    carried_bound[j] = outsider_bound[c];
+    ++j;
+  }
+  slots = std::move(carried_slots);
+  squared_distances = std::move(carried_distances);
+  found = std::move(carried_found);
+  kept = std::move(carried_kept);
+  outsider_bound = std::move(carried_bound);
+  source = superset.data();
+}
+
 CandidateSets findCandidateSets(const TargetIndex& target, const PointList& source,
                                 const Eigen::Isometry3d& T_target_source, int k, double radius,
                                 int threads) {

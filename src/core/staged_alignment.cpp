@@ -119,6 +119,9 @@ RegistrationResult PdaRegistration::alignUnchecked(const PointList& source_input
       if (stage == Stage::kRefine) radius = std::min(radius, near_reach);
       if (stage != Stage::kRefine) near_reach = radius;
     }
+    // The settle stage's first run answers the approach subset's points from their last search
+    // where that proves the answer (candidate_sets.hpp), as a run on the subset would.
+    if (&active == &source) workspace_.search.carryToSuperset(coarse_source, source);
     findCandidateSets(*index, active, state.T, p.k, radius, p.threads, &workspace_.search,
                       &candidates);
     state.search_radius = radius;

@@ -48,6 +48,11 @@ struct CandidateSearchBuffers {
   /// The next call searches afresh (call when the source points' values or the target may have
   /// changed under the same memory: a new alignment).
   void forget() { have_answers = false; }
+  /// The last answers were for `subset`, points of `superset` in its order (the approach's coarse
+  /// subset of the source): they become the answers of the same points of `superset`, and the
+  /// others have none yet, so that the next call on `superset` answers those points from them
+  /// where it can, as it would on `subset`. Nothing changes when they were for other points.
+  void carryToSuperset(const PointList& subset, const PointList& superset);
 };
 
 /// Searches candidates for every source point transformed by T_target_source. `threads` > 1
