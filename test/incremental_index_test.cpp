@@ -40,6 +40,22 @@ PointList cloudWithTies(size_t random_points, unsigned seed) {
   return points;
 }
 
+// `count` source points over the grid's area; with `ties`, every third exactly on a grid point or
+// half-way between two.
+PointList sourceOverTheGrid(int count, unsigned seed, bool ties) {
+  std::mt19937 random(seed);
+  std::uniform_real_distribution<double> coordinate(-0.2, 2.2), height(-0.05, 0.05);
+  PointList source;
+  for (int i = 0; i < count; ++i) {
+    if (ties && i % 3 == 0) {
+      source.emplace_back(0.05 * (i % 40) + 0.025 * (i % 2), 0.05 * ((i / 40) % 40), 0.0);
+    } else {
+      source.emplace_back(coordinate(random), coordinate(random), height(random));
+    }
+  }
+  return source;
+}
+
 void expectSameCandidates(const CandidateSets& a, const CandidateSets& b) {
   ASSERT_EQ(a.offsets, b.offsets);
   ASSERT_EQ(a.target_indices, b.target_indices);
@@ -98,17 +114,7 @@ TEST(TargetIndex, AnswersExactlyTheKNearestWithinRadiusTiesByIndex) {
 // new source values in the same memory after forget().
 TEST(CandidateSets, AnswersFromKeptPointsEqualAFreshSearch) {
   const TargetIndex target(cloudWithTies(20000, 3));
-  std::mt19937 random(4);
-  std::uniform_real_distribution<double> coordinate(-0.2, 2.2), height(-0.05, 0.05);
-  PointList source;
-  for (int i = 0; i < 3000; ++i) {
-    // A third exactly on grid points and half-way between them: ties.
-    if (i % 3 == 0) {
-      source.emplace_back(0.05 * (i % 40) + 0.025 * (i % 2), 0.05 * ((i / 40) % 40), 0.0);
-    } else {
-      source.emplace_back(coordinate(random), coordinate(random), height(random));
-    }
-  }
+  PointList source = sourceOverTheGrid(3000, 4, /*ties=*/true);
   CandidateSearchBuffers buffers;
   CandidateSets reused;
   Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
@@ -141,12 +147,7 @@ TEST(CandidateSets, AnswersFromKeptPointsEqualAFreshSearch) {
 // and the others are searched; answers for other points, or a "subset" out of order, carry nothing.
 TEST(CandidateSets, SubsetAnswersCarryOverToTheWholeSourceExactly) {
   const TargetIndex target(cloudWithTies(20000, 5));
-  std::mt19937 random(6);
-  std::uniform_real_distribution<double> coordinate(-0.2, 2.2), height(-0.05, 0.05);
-  PointList source;
-  for (int i = 0; i < 2000; ++i) {
-    source.emplace_back(coordinate(random), coordinate(random), height(random));
-  }
+  PointList source = sourceOverTheGrid(2000, 6, /*ties=*/false);
   source.push_back(source[10]);  // an exact duplicate, in the subset only as its last point
   PointList subset;
   for (size_t i = 0; i < source.size(); i += 4) subset.push_back(source[i]);
