@@ -5,7 +5,7 @@
 // (stepFollowingRadius): while that is still the whole radius, its runs are the usual attempt's
 // runs to the digit. So it resumes after them, from the loop state they ended in, instead of
 // running them again (wide_vlp16_vlp16_seed3 from 10 deg: the first 5 of its 14 runs; factory_p64
-// on its 0.5-m map from 10 deg: 3 of 6, 13 ms of the alignment's 130).
+// on its 0.5-m map from 10 deg: 3 of 6, 11 ms of the alignment's 130).
 //
 // Kept: the runs of the usual first attempt's first stage (approach, or settle without a coarse
 // subset) up to the first after which a near search's radius would be shorter; a stage change ends
