@@ -74,25 +74,19 @@ TEST(RunTail, ResetForgetsTheStepBefore) {
   EXPECT_NEAR(tail.record(at(0.006, 0.0), at(0.007, 0.0)), 0.001, 1e-12);
 }
 
-// room_scan's 16-row scan on its dense map thinned to 0.5 m: sigma is 0.15 m, and the refine
-// runs used to go on moving 0.2-0.9 mm (a thousandth of sigma) until a step fell below 0.1 mm.
-// The stage now ends on its tail where one is left: over ten perturbations every result is as
-// near the truth as before (1.7 cm; the ground truth is good to about 1 cm / 0.5 deg), every last
-// run moves less than the negligible tail, and some end still moving more than the epsilons (4 of
-// 10 since the parent-voxel normals, whose refine runs settle faster: the rest fall below the
-// epsilons first).
-TEST(RunTail, TheThinnedRoomEndsItsRefineRunsOnTheTail) {
+// room_scan's 16-row scan on its dense map thinned to `voxel`, from ten perturbations at 5 deg:
+// each converged and as near the truth as before (1.7-2 cm; the ground truth is good to about
+// 1 cm / 0.5 deg). Each alignment's traced runs go into *runs_per_seed.
+void traceTheThinnedRoom(double voxel, std::vector<std::vector<RunRecord>>* runs_per_seed) {
   testing_support::SharedCase c;
   std::string error;
   ASSERT_TRUE(testing_support::loadSharedCase("room_scan", &c, &error)) << error;
-  const RegistrationParameters p;
-  PdaRegistration registration(p);
+  PdaRegistration registration{RegistrationParameters()};
   std::vector<RunRecord> runs;
   AlignmentTrace trace;
   trace.run = [&runs](const RunRecord& r) { runs.push_back(r); };
   registration.setTrace(trace);
-  ASSERT_TRUE(registration.setTarget(voxelDownsample(c.target, 0.5)));
-  int ended_on_tail = 0;
+  ASSERT_TRUE(registration.setTarget(voxelDownsample(c.target, voxel)));
   for (uint64_t seed = 1; seed <= 10; ++seed) {
     runs.clear();
     const Eigen::Isometry3d initial = c.T_target_source * randomPerturbation(5.0, 0.25, seed);
@@ -100,11 +94,25 @@ TEST(RunTail, TheThinnedRoomEndsItsRefineRunsOnTheTail) {
     ASSERT_TRUE(r.converged) << "seed " << seed << ": " << r.reason;
     const PoseError e = poseError(c.source, r.T_target_source, c.T_target_source);
     EXPECT_LT(e.mean_distance, 0.03) << "seed " << seed;
-    ASSERT_FALSE(runs.empty());
+    ASSERT_FALSE(runs.empty()) << "seed " << seed;
+    runs_per_seed->push_back(runs);
+  }
+}
+
+// On the 0.5-m map sigma is 0.15 m, and the refine runs used to go on moving 0.2-0.9 mm (a
+// thousandth of sigma) until a step fell below 0.1 mm. The stage now ends on its tail where one
+// is left: every last run moves less than the negligible tail, and some end still moving more
+// than the epsilons (4 of 10 since the parent-voxel normals, whose refine runs settle faster: the
+// rest fall below the epsilons first).
+TEST(RunTail, TheThinnedRoomEndsItsRefineRunsOnTheTail) {
+  std::vector<std::vector<RunRecord>> runs_per_seed;
+  ASSERT_NO_FATAL_FAILURE(traceTheThinnedRoom(0.5, &runs_per_seed));
+  int ended_on_tail = 0;
+  for (const std::vector<RunRecord>& runs : runs_per_seed) {
     const RunRecord& last = runs.back();
-    EXPECT_EQ(std::string(last.stage), "refine") << "seed " << seed;
-    EXPECT_LT(last.step_translation, kNegligibleTailSigmas * last.sigma) << "seed " << seed;
-    ended_on_tail += last.step_translation > p.translation_epsilon;
+    EXPECT_EQ(std::string(last.stage), "refine");
+    EXPECT_LT(last.step_translation, kNegligibleTailSigmas * last.sigma);
+    ended_on_tail += last.step_translation > RegistrationParameters().translation_epsilon;
   }
   EXPECT_GE(ended_on_tail, 2)
       << "the refine runs ended on a step below the epsilons, not on their tail";
@@ -116,32 +124,19 @@ TEST(RunTail, TheThinnedRoomEndsItsRefineRunsOnTheTail) {
 // approaches end with a step still above their 10 epsilons, and every answer is as near the
 // truth as before.
 TEST(RunTail, TheThinnedRoomsApproachEndsOnItsTail) {
-  testing_support::SharedCase c;
-  std::string error;
-  ASSERT_TRUE(testing_support::loadSharedCase("room_scan", &c, &error)) << error;
-  const RegistrationParameters p;
-  PdaRegistration registration(p);
-  std::vector<RunRecord> runs;
-  AlignmentTrace trace;
-  trace.run = [&runs](const RunRecord& r) { runs.push_back(r); };
-  registration.setTrace(trace);
-  ASSERT_TRUE(registration.setTarget(voxelDownsample(c.target, 0.25)));
+  std::vector<std::vector<RunRecord>> runs_per_seed;
+  ASSERT_NO_FATAL_FAILURE(traceTheThinnedRoom(0.25, &runs_per_seed));
   int ended_on_tail = 0;
-  for (uint64_t seed = 1; seed <= 10; ++seed) {
-    runs.clear();
-    const Eigen::Isometry3d initial = c.T_target_source * randomPerturbation(5.0, 0.25, seed);
-    const RegistrationResult r = registration.align(c.source, initial);
-    ASSERT_TRUE(r.converged) << "seed " << seed << ": " << r.reason;
-    const PoseError e = poseError(c.source, r.T_target_source, c.T_target_source);
-    EXPECT_LT(e.mean_distance, 0.03) << "seed " << seed;
+  for (const std::vector<RunRecord>& runs : runs_per_seed) {
     const RunRecord* last_approach = nullptr;
     for (const RunRecord& run : runs) {
       if (std::string(run.attempt) == "first" && std::string(run.stage) == "approach") {
         last_approach = &run;
       }
     }
-    ASSERT_NE(last_approach, nullptr) << "seed " << seed;
-    ended_on_tail += last_approach->step_translation > 10.0 * p.translation_epsilon;
+    ASSERT_NE(last_approach, nullptr);
+    ended_on_tail += last_approach->step_translation >
+                     10.0 * RegistrationParameters().translation_epsilon;
   }
   EXPECT_GE(ended_on_tail, 3) << "the approaches ended on steps below their 10 epsilons";
 }
