@@ -11,7 +11,6 @@
 #include <string>
 #include <vector>
 
-#include "pda_registration/core/alignment_trace.hpp"
 #include "pda_registration/core/error_metrics.hpp"
 #include "pda_registration/core/pda_registration.hpp"
 #include "pda_registration/core/perturbation.hpp"
@@ -163,7 +162,6 @@ struct ThinnedTrial {
   uint64_t seed;
   RegistrationResult result;
   PoseError error;
-  std::vector<AttemptRecord> attempts;  ///< as the trace noted them
 };
 std::vector<ThinnedTrial> alignOnThinnedTarget(const std::string& name, double voxel,
                                                double degrees, double metres,
@@ -179,15 +177,10 @@ std::vector<ThinnedTrial> alignOnThinnedTarget(const std::string& name, double v
   PdaRegistration registration(p);
   EXPECT_TRUE(registration.setTarget(c.target));
   std::vector<ThinnedTrial> trials;
-  std::vector<AttemptRecord> attempts;
-  AlignmentTrace trace;
-  trace.attempt = [&attempts](const AttemptRecord& a) { attempts.push_back(a); };
-  registration.setTrace(trace);
   for (uint64_t seed : seeds) {
-    attempts.clear();
     const RegistrationResult r =
         registration.align(c.source, c.T_target_source * randomPerturbation(degrees, metres, seed));
-    trials.push_back({seed, r, poseError(c.source, r.T_target_source, c.T_target_source), attempts});
+    trials.push_back({seed, r, poseError(c.source, r.T_target_source, c.T_target_source)});
   }
   return trials;
 }
@@ -220,32 +213,6 @@ TEST(SharedDataThinned, ARigidLidarMapIsNotPolished) {
     EXPECT_EQ(t.result.disagreeing_halves, 0u) << "seed " << t.seed;
     EXPECT_FALSE(t.result.warp_polished) << "seed " << t.seed;
     EXPECT_LT(t.error.mean_distance, 0.03) << "seed " << t.seed;
-  }
-}
-
-// factory_p64 against its map thinned to 0.5 m, from 10 deg / 0.5 m: the usual answer is right
-// (5.5 mm) but questionable (nu at its floor after moving the source further than the radius), so
-// a near search runs. Its approach comes to rest 5 mm from the usual answer (sigma 5.9 cm): back
-// at it, the near search stops there, before its refine runs, second starts and local start
-// repeat what the usual alignment asked (near_search.hpp; median of 10 trials on an Intel Xeon
-// 240 -> 130 ms).
-TEST(SharedDataThinned, ANearSearchBackAtTheUsualAnswerStopsThere) {
-  const auto trials = alignOnThinnedTarget("factory_p64", 0.5, 10.0, 0.5, {1u, 2u});
-  ASSERT_EQ(trials.size(), 2u);
-  for (const ThinnedTrial& t : trials) {
-    EXPECT_TRUE(t.result.converged) << "seed " << t.seed << ": " << t.result.reason;
-    EXPECT_LT(t.error.mean_distance, 0.01) << "seed " << t.seed;
-    EXPECT_FALSE(t.result.near_search) << "seed " << t.seed;  // the usual answer stands
-    const AttemptRecord* near = nullptr;
-    for (const AttemptRecord& a : t.attempts) {
-      const std::string name = a.attempt;
-      if (name == "near search") near = &a;
-      EXPECT_EQ(name.rfind("near search:", 0), std::string::npos)
-          << "seed " << t.seed << ": the near search went on to " << name;
-    }
-    ASSERT_NE(near, nullptr) << "seed " << t.seed << ": no near search ran";
-    EXPECT_EQ(near->reason, "near search: back at the usual answer") << "seed " << t.seed;
-    EXPECT_FALSE(near->adopted) << "seed " << t.seed;
   }
 }
 

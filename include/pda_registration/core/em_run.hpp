@@ -35,6 +35,10 @@ struct EmState {
   bool outlier_class = false;
   double outlier_share = 0.5;
   double search_radius = 0.0;
+  /// The sampling model's floor of sigma^2, the target's thickness about its surface
+  /// (targetThickness), as measured by the last run whose candidate sets were whole: searched at
+  /// the whole radius or beyond (0 until one was). A shorter refine radius truncates the sets.
+  double whole_set_thickness = 0.0;
 };
 
 /// Where a source point's target normal is read from the normal map. At its nearest candidate, a
