@@ -305,11 +305,6 @@ TEST(NearSearch, TakesOverTheUsualOpeningRunsAndRunsOnFromThere) {
   EXPECT_TRUE(nearSearchAnswerWithin(maps, traced.result, 0.02));
 }
 
-// The wide 64-beam / VLP-16 scan pair of seed 5 from 10 deg / 0.5 m (perturbation 8): the usual
-// alignment ends unresolved 2.0 m off. The near search's refine runs, held at its settled reach
-// (0.5 m), came to rest 2.25 m off with sigma 0.12 m: residuals as wide as that search, judged
-// against the whole radius they passed for converged. Judged against the search they ran, the
-// answer is unresolved and the usual, honest failure stands.
 // The wide VLP-16 pair of seed 3 (the map's revolution 20 m / 3 m from the scan) from 10 deg /
 // 0.5 m: the usual answer is right (1.2 cm) but questionable (nu at its floor), so a near search
 // runs. Its approach comes to rest at the usual answer: back at it, the near search stops there,
@@ -336,6 +331,11 @@ TEST(NearSearch, BackAtTheUsualAnswerItStopsThere) {
   }
 }
 
+// The wide 64-beam / VLP-16 scan pair of seed 5 from 10 deg / 0.5 m (perturbation 8): the usual
+// alignment ends unresolved 2.0 m off. The near search's refine runs, held at its settled reach
+// (0.5 m), came to rest 2.25 m off with sigma 0.12 m: residuals as wide as that search, judged
+// against the whole radius they passed for converged. Judged against the search they ran, the
+// answer is unresolved and the usual, honest failure stands.
 TEST(NearSearch, ResidualsAsWideAsItsReachAreUnresolved) {
   // The wide 64-beam / VLP-16 pair: the 64-beam revolution 20 m / 3 m from the scan.
   const simulation::SimulatedMaps maps = simulation::simulateMaps(testing_support::scanPairOptions(
