@@ -69,8 +69,8 @@ void lookupNormals(const SurfaceNormalMap& map, const PointList& source, const E
 double computeShapeInputs(const SurfaceNormalMap& normal_map, const PointList& source,
                           const CandidateSets& candidates, const Eigen::Isometry3d& T,
                           const RegistrationParameters& p, NormalLookup normals_at,
-                          bool every_point, PointList* normals, std::vector<double>* spread,
-                          std::vector<SurfaceNormalMap::Memo>* memos) {
+                          bool every_point, bool measure_thickness, PointList* normals,
+                          std::vector<double>* spread, std::vector<SurfaceNormalMap::Memo>* memos) {
   normals->clear();
   spread->clear();
   if (p.surface_anisotropy > 1.0) {
@@ -79,7 +79,7 @@ double computeShapeInputs(const SurfaceNormalMap& normal_map, const PointList& s
   }
   if (!usesSamplingModel(p)) return 0.0;
   *spread = candidateSpread(candidates, p.threads);
-  return targetThickness(candidates, *normals);
+  return measure_thickness ? targetThickness(candidates, *normals) : 0.0;
 }
 
 // One run: EM on the workspace's candidate sets (fixed during the run) until a step is below the
@@ -91,9 +91,13 @@ bool runEm(const PointList& source, const SurfaceNormalMap& normal_map, NormalLo
   const CandidateSets& candidates = workspace->candidates;
   // The normals go straight into the shapes, which keep them for every iteration of the run.
   PointList& normals = workspace->shapes.normal;
-  double thickness = computeShapeInputs(
-      normal_map, source, candidates, state->T, p, normals_at,
-      /*every_point=*/false, &normals, &workspace->spread, &workspace->normal_memos);
+  // A run whose radius cuts the candidate sets short uses the thickness measured on whole ones
+  // (below) and does not measure its own.
+  const bool whole_sets = state->search_radius >= p.radius;
+  const bool measure_thickness = whole_sets || state->whole_set_thickness <= 0.0;
+  double thickness = computeShapeInputs(normal_map, source, candidates, state->T, p, normals_at,
+                                        /*every_point=*/false, measure_thickness, &normals,
+                                        &workspace->spread, &workspace->normal_memos);
   // A floor keeps the t-weights defined when the clouds match exactly (sigma -> 0); the sampling
   // model's is the target's own thickness about its surface, a property of the map, measured on
   // whole candidate sets. A refine run's radius (6 sigma) cuts a sparse map's sets short, and the
@@ -101,9 +105,9 @@ bool runEm(const PointList& source, const SurfaceNormalMap& normal_map, NormalLo
   // radius, which follows sigma, which sat on the floor. The room's scan on its 0.25-m map: 5.0 ->
   // 3.2 candidates a point, the floor 6.7 -> 3.5 cm over five refine runs; factory_p64 on its
   // 0.5-m map: 356 of 12,874 points at radius 0.25 m, the radius swinging 0.25-0.51 m for seven.
-  if (state->search_radius >= p.radius) {
+  if (whole_sets) {
     state->whole_set_thickness = thickness;
-  } else if (state->whole_set_thickness > 0.0) {
+  } else if (!measure_thickness) {
     thickness = state->whole_set_thickness;
   }
   const double sigma_squared_floor = std::max(std::pow(1e-6 * p.radius, 2), thickness);

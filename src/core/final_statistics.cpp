@@ -93,8 +93,8 @@ void fillFinalStatistics(const PointList& source, const TargetIndex& index,
   const CandidateSets& candidates = workspace->candidates;
   // The refine runs' normals (at the candidates), as the last run's E-step had them.
   computeShapeInputs(normal_map, source, candidates, state.T, p, NormalLookup::kAtCandidate,
-                     /*every_point=*/true, &workspace->normals, &workspace->spread,
-                     &workspace->normal_memos);
+                     /*every_point=*/true, /*measure_thickness=*/false, &workspace->normals,
+                     &workspace->spread, &workspace->normal_memos);
   // The degeneracy check needs the normals even when the noise model does not.
   PointList isotropic_normals;
   if (workspace->normals.empty()) {

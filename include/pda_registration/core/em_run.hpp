@@ -78,11 +78,12 @@ void lookupNormals(const SurfaceNormalMap& map, const PointList& source, const E
 /// What the noise shapes of one run are made from: the source points' target normals
 /// (lookupNormals; not needed by the isotropic model: left empty) and the candidates' sampling
 /// spread (sampling model only). Returns the target's thickness, sigma^2's floor from the
-/// target's own noise (sampling model; 0 otherwise).
+/// target's own noise (sampling model and `measure_thickness`; 0 otherwise).
 double computeShapeInputs(const SurfaceNormalMap& normal_map, const PointList& source,
                           const CandidateSets& candidates, const Eigen::Isometry3d& T,
                           const RegistrationParameters& p, NormalLookup normals_at,
-                          bool every_point, PointList* normals, std::vector<double>* spread,
+                          bool every_point, bool measure_thickness, PointList* normals,
+                          std::vector<double>* spread,
                           std::vector<SurfaceNormalMap::Memo>* memos = nullptr);
 
 }  // namespace pda_registration
