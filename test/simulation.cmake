@@ -75,6 +75,11 @@ catkin_add_gtest(second_start_test second_start_test.cpp)
 target_compile_options(second_start_test PRIVATE ${PDA_WARNINGS})
 target_link_libraries(second_start_test pda_simulated_cases gtest_main)
 
+# The turned start: the seed turned about the sensor, on the 3-m and 20-m VLP-16 scan pairs.
+catkin_add_gtest(turned_start_test turned_start_test.cpp)
+target_compile_options(turned_start_test PRIVATE ${PDA_WARNINGS})
+target_link_libraries(turned_start_test pda_simulated_cases gtest_main)
+
 # The near search where the usual answer is questionable: its radius, its verdict, RGB-D fragments
 # sharing a third of the scene.
 catkin_add_gtest(near_search_test near_search_test.cpp)

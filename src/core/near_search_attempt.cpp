@@ -77,6 +77,7 @@ bool PdaRegistration::questionable(const RegistrationResult& answer,
 const char* PdaRegistration::attemptName(const char* usual) const {
   if (!in_near_search_) return usual;
   if (std::strcmp(usual, "second start") == 0) return "near search: second start";
+  if (std::strcmp(usual, "turned start") == 0) return "near search: turned start";
   if (std::strcmp(usual, "local start") == 0) return "near search: local start";
   if (std::strcmp(usual, "other direction") == 0) return "near search: other direction";
   if (std::strcmp(usual, "wider search") == 0) return "near search: wider search";

@@ -36,6 +36,10 @@ bool FirstResultBasin::near(const Eigen::Isometry3d& a, const Eigen::Isometry3d&
   return std::hypot(shift, angle * source_rms_radius) < final_radius;
 }
 
+bool headingBack(double apart_at_start, double apart_now) {
+  return apart_now < 0.5 * apart_at_start;
+}
+
 double commonYardstick(const RegistrationParameters& p, double sigma_first, double sigma_second) {
   return p.inlier_sigmas * std::min(sigma_first, sigma_second);
 }

@@ -1,17 +1,20 @@
 #include "pda_registration/core/pda_registration.hpp"
 
-// The second starts (second_start.hpp) as align() runs them: at the end of the first attempt, or
-// earlier, once the first's refine runs leave nu at its floor, the mark of a false rest. On the
-// RGB-D fragment pair of seed 5 from 20 deg the first attempt then still ran 10-12 refine runs
+// The second starts (second_start.hpp), and after them a turned start (turned_start.hpp), as
+// align() runs them: at the end of the first attempt, or earlier, once the first's refine runs
+// leave nu at its floor, the mark of a false rest. On the RGB-D fragment pair of seed 5 from 20 deg the first attempt then still ran 10-12 refine runs
 // (110-130 ms of a 560-700 ms alignment) into the rest the second start replaced.
 
 #include <cmath>
 #include <memory>
+#include <optional>
 #include <utility>
+#include <vector>
 
 #include "pda_registration/core/em_run.hpp"
 #include "pda_registration/core/final_statistics.hpp"
 #include "pda_registration/core/nested_alignment.hpp"
+#include "pda_registration/core/turned_start.hpp"
 
 namespace pda_registration {
 namespace {
@@ -62,20 +65,48 @@ bool PdaRegistration::fitsMoreOfTheOverlap(const RegistrationResult& second,
   return secondStartIsBetter(second, supportAt(second.T_target_source), supportAt(T_first));
 }
 
+std::optional<Eigen::Isometry3d> PdaRegistration::turnedStart(
+    const Eigen::Isometry3d& T_initial) const {
+  const std::shared_ptr<const TargetIndex> index = target_map_.index();
+  if (!index || workspace_.source.empty()) return std::nullopt;
+  // Every 4th of the points the first attempt ran on: the test is a ranking, not a fit.
+  PointList sample;
+  for (size_t i = 0; i < workspace_.source.size(); i += 4) sample.push_back(workspace_.source[i]);
+  const auto share = [&](const Eigen::Isometry3d& T) {
+    return shareWithinReach(*index, sample, T, parameters_.radius, parameters_.threads);
+  };
+  std::array<Eigen::Isometry3d, kTurnDegrees.size()> turns;
+  std::array<double, kTurnDegrees.size()> shares{};
+  for (size_t i = 0; i < turns.size(); ++i) {
+    turns[i] = turnedAboutSensor(T_initial, kTurnDegrees[i]);
+    shares[i] = share(turns[i]);
+  }
+  const int chosen = turnToTry(shares, share(T_initial));
+  if (chosen < 0) return std::nullopt;
+  return turns[static_cast<size_t>(chosen)];
+}
+
 void PdaRegistration::runSecondStarts(
     const PointList& source, const Eigen::Isometry3d& T_initial,
     std::chrono::steady_clock::time_point started, const FirstResultBasin& basin,
     bool want_associations, bool in_spare_workspace,
     const std::function<bool(RegistrationResult*, Associations*)>& keep) {
   const Eigen::Isometry3d* tried = nullptr;
-  const auto starts = secondStartPoses(basin.T_found, T_initial, basin.centroid);
-  for (const Eigen::Isometry3d& start : starts) {
+  std::vector<Eigen::Isometry3d> starts;
+  for (const Eigen::Isometry3d& start : secondStartPoses(basin.T_found, T_initial, basin.centroid)) {
+    starts.push_back(start);
+  }
+  const size_t found_rotation_starts = starts.size();
+  if (const auto turned = turnedStart(T_initial)) starts.push_back(*turned);
+  for (size_t i = 0; i < starts.size(); ++i) {
+    const Eigen::Isometry3d& start = starts[i];
     // A start in the first result's basin would only find it again; one near the start just
     // tried is the same hypothesis.
     if (basin.contains(start) || (tried && basin.near(*tried, start))) continue;
     tried = &start;
     const NestedAlignment nested(&parameters_, started);
-    const AttemptLabel label(&attempt_, attemptName("second start"));
+    const AttemptLabel label(
+        &attempt_, attemptName(i < found_rotation_starts ? "second start" : "turned start"));
     if (!nested.timeLeft()) return;
     Associations second_associations;
     AttemptOptions options;

@@ -50,6 +50,9 @@ RegistrationResult PdaRegistration::alignUnchecked(const PointList& source_input
   const PointList& source = workspace_.source;
   const std::shared_ptr<const TargetIndex> index = inputs.index;
   const std::shared_ptr<const SurfaceNormalMap> normal_map = inputs.normal_map;
+  // A second start's distance from the first result where it began (second_start.hpp).
+  const double apart_at_start =
+      abandon_in ? rmsDisplacement(source, T_target_source_initial, abandon_in->T_found) : 0.0;
 
   // Three stages, each until a run moves less than 10 epsilons (the last: less than the
   // epsilons). Approach: the full radius on a strided subset of the source (these runs only need
@@ -209,6 +212,12 @@ RegistrationResult PdaRegistration::alignUnchecked(const PointList& source_input
     }
     if (abandon_in && abandon_in->contains(state.T)) {
       result.reason = "second start: back in the first result's basin";
+      return result;
+    }
+    // Heading back counts from the second run: the first one's step is not yet a direction.
+    if (abandon_in && run >= 2 &&
+        headingBack(apart_at_start, rmsDisplacement(source, state.T, abandon_in->T_found))) {
+      result.reason = "second start: heading back to the first result";
       return result;
     }
     // A local start that has left the seed's neighbourhood would not be kept: run after a lidar

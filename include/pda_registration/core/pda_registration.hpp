@@ -13,6 +13,7 @@
 #include <chrono>
 #include <functional>
 #include <memory>
+#include <optional>
 #include <utility>
 #include <vector>
 
@@ -151,15 +152,19 @@ class PdaRegistration {
                                std::chrono::steady_clock::time_point started,
                                EarlySecondStarts* early, RegistrationResult* result,
                                Associations* associations);
-  /// The second starts out of `basin` (second_start.hpp), in turn, until `keep` takes one (returns
-  /// true); `in_spare_workspace`: run in spare_workspace_, leaving workspace_ as it was.
+  /// The turn of T_initial (turned_start.hpp) worth a second start, ranked on the points the
+  /// first attempt ran on; none if no turn gives as many of them a candidate as the seed.
+  std::optional<Eigen::Isometry3d> turnedStart(const Eigen::Isometry3d& T_initial) const;
+  /// The second starts out of `basin` (second_start.hpp), then the turned start, in turn, until
+  /// `keep` takes one (returns true); `in_spare_workspace`: run in spare_workspace_, leaving
+  /// workspace_ as it was.
   void runSecondStarts(const PointList& source, const Eigen::Isometry3d& T_initial,
                        std::chrono::steady_clock::time_point started,
                        const FirstResultBasin& basin, bool want_associations,
                        bool in_spare_workspace,
                        const std::function<bool(RegistrationResult*, Associations*)>& keep);
-  /// Second alignments from the rotation the first found (two starts, in turn), the first that is
-  /// better kept (second_start.hpp).
+  /// Second alignments from the rotation the first found (two starts, in turn) and from a turned
+  /// seed, the first that is better kept (second_start.hpp, turned_start.hpp).
   void trySecondStart(const PointList& source, const Eigen::Isometry3d& T_initial,
                       std::chrono::steady_clock::time_point started, RegistrationResult* result,
                       Associations* associations);
