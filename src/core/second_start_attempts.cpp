@@ -2,8 +2,9 @@
 
 // The second starts (second_start.hpp), and after them a turned start (turned_start.hpp), as
 // align() runs them: at the end of the first attempt, or earlier, once the first's refine runs
-// leave nu at its floor, the mark of a false rest. On the RGB-D fragment pair of seed 5 from 20 deg the first attempt then still ran 10-12 refine runs
-// (110-130 ms of a 560-700 ms alignment) into the rest the second start replaced.
+// leave nu at its floor, the mark of a false rest. On the RGB-D fragment pair of seed 5 from
+// 20 deg the first attempt then still ran 10-12 refine runs (110-130 ms of a 560-700 ms
+// alignment) into the rest the second start replaced.
 
 #include <cmath>
 #include <memory>
