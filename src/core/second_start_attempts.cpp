@@ -93,10 +93,8 @@ void PdaRegistration::runSecondStarts(
     bool want_associations, bool in_spare_workspace,
     const std::function<bool(RegistrationResult*, Associations*)>& keep) {
   const Eigen::Isometry3d* tried = nullptr;
-  std::vector<Eigen::Isometry3d> starts;
-  for (const Eigen::Isometry3d& start : secondStartPoses(basin.T_found, T_initial, basin.centroid)) {
-    starts.push_back(start);
-  }
+  const auto found_rotation = secondStartPoses(basin.T_found, T_initial, basin.centroid);
+  std::vector<Eigen::Isometry3d> starts(found_rotation.begin(), found_rotation.end());
   const size_t found_rotation_starts = starts.size();
   if (const auto turned = turnedStart(T_initial)) starts.push_back(*turned);
   for (size_t i = 0; i < starts.size(); ++i) {
