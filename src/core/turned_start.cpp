@@ -30,7 +30,7 @@ double shareWithinReach(const TargetIndex& index, const PointList& points,
   return static_cast<double>(within) / static_cast<double>(points.size());
 }
 
-int turnToTry(const std::array<double, 4>& turn_shares, double seed_share) {
+int turnToTry(const std::array<double, kTurnDegrees.size()>& turn_shares, double seed_share) {
   const auto best = std::max_element(turn_shares.begin(), turn_shares.end());
   if (*best < seed_share) return -1;
   return static_cast<int>(best - turn_shares.begin());

@@ -40,6 +40,6 @@ double shareWithinReach(const TargetIndex& index, const PointList& points,
 
 /// Which turn to try (an index into kTurnDegrees), given each turn's shareWithinReach and the
 /// seed's: the turn with the largest share, if it is at least the seed's; -1 for none.
-int turnToTry(const std::array<double, 4>& turn_shares, double seed_share);
+int turnToTry(const std::array<double, kTurnDegrees.size()>& turn_shares, double seed_share);
 
 }  // namespace pda_registration
