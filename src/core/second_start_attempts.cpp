@@ -110,6 +110,7 @@ void PdaRegistration::runSecondStarts(
     Associations second_associations;
     AttemptOptions options;
     options.abandon_in = &basin;
+    if (i >= found_rotation_starts) options.fit_within_runs = kTurnedStartFitRuns;
     RegistrationResult second;
     {
       const WorkspaceSwap swap(in_spare_workspace ? &workspace_ : nullptr, &spare_workspace_);

@@ -220,6 +220,13 @@ RegistrationResult PdaRegistration::alignUnchecked(const PointList& source_input
       result.reason = "second start: heading back to the first result";
       return result;
     }
+    // A turned start is a guess: one not at a fit within its runs is left (turned_start.hpp).
+    if (options.fit_within_runs > 0 && run >= options.fit_within_runs &&
+        residualsSpanTheSearch(p, std::sqrt(state.sigma_squared))) {
+      result.reason = "turned start: not at a fit within its runs";
+      result.sigma = std::sqrt(state.sigma_squared);
+      return result;
+    }
     // A local start that has left the seed's neighbourhood would not be kept: run after a lidar
     // scan pair's right answer from 20 deg, one wandered 2-7 m off over 12-58 runs, doubling the
     // time of the alignment.

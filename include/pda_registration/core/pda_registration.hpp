@@ -38,6 +38,9 @@ struct UsualAnswer;
 struct AttemptOptions {
   /// A second start: it stops (not converged) once it enters the first's basin.
   const FirstResultBasin* abandon_in = nullptr;
+  /// A turned start (turned_start.hpp): it stops (not converged) when, after this many runs, its
+  /// residuals still span the search (residualsSpanTheSearch); 0: never.
+  int fit_within_runs = 0;
   /// Every run uses the outlier class, and the alignment stops (not converged) once it moves
   /// the source further from the seed than its answer could be kept (local_start.hpp).
   bool local_start = false;
