@@ -17,13 +17,14 @@
 // the seed does points away from the overlap.
 //
 // A turn that points into the overlap but not at the truth still costs: on RGB-D fragments that
-// share a third of the scene (scripts/benchmark_low_overlap, L = 0.4) 64 of 88 turned starts
-// wandered on for 9-52 runs at sigma 0.19-0.33 m, as wide as the 1-m search, into the
-// "unresolved" verdict, and none was kept. A turned start is a guess, not a found rotation: one
-// whose residuals still span the search (residualsSpanTheSearch) at its kTurnedStartFitRuns-th
-// run is left there. The 15 kept that reach the truth (nine in scripts/benchmark, six at
-// L = 0.55, all from 20 deg) were at a fit by then, 6 sigma at most 0.44 of the radius; at the
-// 5th run one was still at 1.02 (a near search's on the fragments of seed 5 at L = 0.55).
+// share a third of the scene (scripts/benchmark_low_overlap, L = 0.4) none of 88 turned starts
+// was kept, and 51 were still at sigma 0.18-0.45 m, as wide as the 1-m search, at their 8th run;
+// they ran on for 9-79 runs, most into the "unresolved" verdict. A turned start is a guess, not a
+// found rotation: one whose residuals still span the search (residualsSpanTheSearch) at its
+// kTurnedStartFitRuns-th run is left there. The 15 kept that reach the truth (nine in
+// scripts/benchmark, six at L = 0.55, all from 20 deg) were at a fit by then, 6 sigma at most 0.44
+// of the radius; at the 5th run one was still at 1.02 (a near search's on the fragments of seed 5
+// at L = 0.55).
 
 #include <Eigen/Geometry>
 #include <array>
