@@ -76,8 +76,9 @@ TEST(TargetIndex, AnswersExactlyTheKNearestWithinRadiusTiesByIndex) {
   const int k = 7;
   for (int q = 0; q < 3000; ++q) {
     // Half the queries on grid points and half-way between them: exact ties in distance.
-    const Point query = q % 2 ? Point(0.05 * (q % 40) + 0.025 * (q % 3), 0.05 * ((q / 40) % 40), 0.0)
-                              : Point(coordinate(random), coordinate(random), 0.0);
+    const Point query =
+        q % 2 ? Point(0.05 * (q % 40) + 0.025 * (q % 3), 0.05 * ((q / 40) % 40), 0.0)
+              : Point(coordinate(random), coordinate(random), 0.0);
     const double radius = q % 3 == 0 ? 0.05 : 0.3;
     std::vector<std::pair<double, size_t>> brute;
     for (size_t i = 0; i < points.size(); ++i) {

@@ -113,12 +113,13 @@ TEST(MapScaleSpread, ThinAxesAndSmallHalvesAreNotCut) {
   Vector6d step;
   OctantPartition octants = octantsAtOptimum(room, along, &hessian, &step);
   // A room 40 m long and 3 m high: only its length is cut.
-  EXPECT_EQ(halfSplitDisagreements(octants, hessian.inverse(), Eigen::Vector3d(40.0, 6.0, 3.0)).size(), 1u);
+  const Eigen::Vector3d extent(40.0, 6.0, 3.0);
+  EXPECT_EQ(halfSplitDisagreements(octants, hessian.inverse(), extent).size(), 1u);
   // A half with under a tenth of the points is no sample of the map.
   for (int o = 0; o < 8; ++o) {
     if (o & 1) octants[o].points = 1;
   }
-  EXPECT_EQ(halfSplitDisagreements(octants, hessian.inverse(), Eigen::Vector3d(40.0, 6.0, 3.0)).size(), 0u);
+  EXPECT_EQ(halfSplitDisagreements(octants, hessian.inverse(), extent).size(), 0u);
 }
 
 // As the E-step hands them over: one correspondence per point, its target mean moved along the

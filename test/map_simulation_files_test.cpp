@@ -207,7 +207,8 @@ TEST(PdaSimulateTool, BadFlagsExitWithCodeTwoAndOneLine) {
                                                   "--output " + folder + " --translation 1,2",
                                                   "--output " + folder + " --kinect-frames 0",
                                                   "--output " + folder + " --distortion lots",
-                                                  "--output " + folder + " --scene outdoor --scene-changes 2",
+                                                  "--output " + folder +
+                                                      " --scene outdoor --scene-changes 2",
                                                   "--output " + folder + " --colour red",
                                                   "--output /dev/null/case",
                                                   "--bag /nonexistent-directory/maps.bag",

@@ -27,7 +27,8 @@ OverlapCounts countInOverlap(const PointList& target, const PointList& source,
 }
 
 bool sourceIsDenser(const OverlapCounts& counts) {
-  return static_cast<double>(counts.source) > kSwapDensityRatio * static_cast<double>(counts.target);
+  return static_cast<double>(counts.source) >
+         kSwapDensityRatio * static_cast<double>(counts.target);
 }
 
 }  // namespace pda_registration

@@ -178,7 +178,8 @@ void findCandidateSets(const TargetIndex& target, const PointList& source,
   buffers->k = k;
   buffers->T_target_source = T_target_source;
   buffers->have_answers = true;
-  buffers->answered_from_kept = static_cast<size_t>(std::count(answered.begin(), answered.end(), 1));
+  buffers->answered_from_kept =
+      static_cast<size_t>(std::count(answered.begin(), answered.end(), 1));
 
   sets->offsets.resize(n + 1);
   sets->offsets[0] = 0;

@@ -28,7 +28,9 @@ double updateDegreesOfFreedom(double nu_old, double mean_log_u_minus_u, double d
   const double half_old = 0.5 * (nu_old + dimension);
   const double constant = 1.0 + mean_log_u_minus_u + digamma(half_old) - std::log(half_old);
   // f(nu) = log(nu/2) - psi(nu/2) + constant decreases in nu (log x - psi(x) falls from +inf to 0).
-  const auto f = [constant](double nu) { return std::log(0.5 * nu) - digamma(0.5 * nu) + constant; };
+  const auto f = [constant](double nu) {
+    return std::log(0.5 * nu) - digamma(0.5 * nu) + constant;
+  };
   double low = kMinDegreesOfFreedom, high = kMaxDegreesOfFreedom;
   if (f(high) >= 0.0) return high;  // tails as light as a Gaussian's
   if (f(low) <= 0.0) return low;

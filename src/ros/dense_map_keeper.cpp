@@ -283,7 +283,8 @@ void DenseMapKeeper::update(const sensor_msgs::PointCloud2ConstPtr& cloud) {
   }
   changed_.notify_all();
   const size_t points = slot.map_points;
-  const double subset_voxel = slot.subset && slot.subset->thinned() ? slot.subset->voxelSize() : 0.0;
+  const double subset_voxel =
+      slot.subset && slot.subset->thinned() ? slot.subset->voxelSize() : 0.0;
   status_->update([&](AlignmentStatusValues& s) {
     s.dense_points = points;
     s.sparse_spacing = sparse_spacing;

@@ -297,7 +297,9 @@ int main(int argc, char** argv) {
   bands << "]";
   JsonLine json;
   json.add("label", cl.text("label", cl.text("case"))).add("sparse_points", loaded.source.size());
-  json.add("sparse_sent", sparse_sent).add("answered", samples.size()).add("dense_sent", dense_sent);
+  json.add("sparse_sent", sparse_sent)
+      .add("answered", samples.size())
+      .add("dense_sent", dense_sent);
   json.add("median_ms", percentile(latencies, 0.5)).add("p95_ms", percentile(latencies, 0.95));
   json.add("max_ms", percentile(latencies, 1.0)).add("max_dense_points", max_points);
   json.add("index_update_ms", updates.empty() ? -1.0 : percentile(updates, 0.5));

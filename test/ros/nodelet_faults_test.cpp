@@ -211,7 +211,8 @@ TEST_F(NodeletFaults, B_DenseMapDisappearsAndARebuiltOneComesBack) {
   const int updates = indexUpdates(harness_);
   ASSERT_GE(updates, 1);
   harness_->publishDense(rebuilt, "dense_map");
-  ASSERT_TRUE(waitForIndexUpdatesBeyond(harness_, updates, 30.0)) << "the rebuilt map never came in use";
+  ASSERT_TRUE(waitForIndexUpdatesBeyond(harness_, updates, 30.0))
+      << "the rebuilt map never came in use";
   seed_->set(shift * truth * randomPerturbation(3.0, 0.15, 9));
   ros::WallDuration(0.3).sleep();
   expectAligned(ros::Time::now(), shift * truth, "rebuilt map");

@@ -22,7 +22,7 @@ constexpr double kMaxDegreesOfFreedom = 60.0;
 
 /// True when nu is estimated from the data (not fixed) and the estimate sits at the floor: the
 /// residuals are as heavy-tailed as the model allows, the mark of a result that rests on a
-/// fraction of the points. The ECM update clamps nu to the floor, so an estimate there is exactly it.
+/// fraction of the points. The ECM update clamps nu to the floor: an estimate there is exactly it.
 bool nuEstimatedAtFloor(const RegistrationParameters& p, double nu);
 
 /// The digamma function psi(x) for x > 0.
@@ -30,8 +30,9 @@ double digamma(double x);
 
 /// One ECM update of nu, in [kMinDegreesOfFreedom, kMaxDegreesOfFreedom]. (Not rounded: ECM's
 /// steps shrink near the optimum, and rounding them stalls it short of it; a non-integer nu costs
-/// the E-step a std::pow per candidate.) `mean_log_u_minus_u` is mean_j sum_i P(a_i)(log u_i - u_i) from the
-/// E-step run with nu_old; `dimension` is d (3). Returns nu_old when the statistic is not finite.
+/// the E-step a log and an exp per candidate.) `mean_log_u_minus_u` is
+/// mean_j sum_i P(a_i)(log u_i - u_i) from the E-step run with nu_old; `dimension` is d (3).
+/// Returns nu_old when the statistic is not finite.
 double updateDegreesOfFreedom(double nu_old, double mean_log_u_minus_u, double dimension);
 
 }  // namespace pda_registration

@@ -30,7 +30,8 @@ namespace pda_registration {
 
 /// What one run of the staged loop hands the next, besides the stage (staged_alignment.cpp).
 struct RunLoopState {
-  explicit RunLoopState(const PoseStep& metric) : extrapolation(metric), rest(metric), tail(metric) {}
+  explicit RunLoopState(const PoseStep& metric)
+      : extrapolation(metric), rest(metric), tail(metric) {}
 
   EmState state;
   Increment last_run_step{0.0, 0.0};

@@ -125,7 +125,8 @@ class PdaRegistration {
   /// Checks the parameters, the guess and both clouds and prepares them; false: `result` says why.
   bool prepareAttempt(const PointList& source_input, const Eigen::Isometry3d& T_initial,
                       AttemptInputs* inputs, RegistrationResult* result);
-  /// What second starts questioned at the first attempt's nu floor left (second_start_attempts.cpp).
+  /// What the second starts asked at the first attempt's nu floor left
+  /// (second_start_attempts.cpp).
   struct EarlySecondStarts {
     bool tried = false;    ///< the question was warranted and the starts ran
     bool adopted = false;  ///< one of them superseded the first attempt: `adopted_result`
