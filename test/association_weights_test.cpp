@@ -82,6 +82,30 @@ TEST(AssociationWeights, NonIntegerNuMatchesTheDoublePrecisionFormula) {
   }
 }
 
+// The half-unit grid an estimated nu is weighed on (degrees_of_freedom.hpp): (nu + 3) / 2 a
+// multiple of 1/4, its power by products and square roots, nu's statistic by one log a candidate.
+TEST(AssociationWeights, HalfUnitNuMatchesTheDoublePrecisionFormula) {
+  const double residuals[5] = {0.02, 0.5, 3.0, 40.0, 1e9};
+  for (const double nu : {1.0, 1.5, 2.0, 2.5, 3.5, 12.5, 60.0}) {
+    double posterior[5], weight[5], log_precision[5];
+    computeCandidateWeights(residuals, 5, nu, 0.7, posterior, weight, log_precision);
+    double density[5], total = 0.0;
+    for (int i = 0; i < 5; ++i) {
+      density[i] = std::pow(1.0 + residuals[i] / 0.7 / nu, -0.5 * (nu + 3.0));
+      total += density[i];
+    }
+    for (int i = 0; i < 5; ++i) {
+      const double precision = (nu + 3.0) / (nu + residuals[i] / 0.7);
+      const double expected = density[i] / total;
+      EXPECT_NEAR(posterior[i], expected, 1e-12 * expected + 1e-15) << "nu " << nu << " i " << i;
+      EXPECT_NEAR(weight[i], expected * precision, 1e-12 * expected * precision + 1e-15);
+      if (expected > 1e-12) {
+        EXPECT_NEAR(log_precision[i], std::log(precision), 1e-6) << "nu " << nu << " i " << i;
+      }
+    }
+  }
+}
+
 TEST(AssociationWeights, PosteriorSumsToOneAndLargeNuApproachesGaussian) {
   const double residuals[4] = {0.3, 2.0, 9.0, 0.01};
   double p_t[4], w_t[4], p_g[4], w_g[4];
@@ -234,6 +258,54 @@ double estimatedNu(double true_nu, double start_nu) {
     nu = pda_registration::updateDegreesOfFreedom(nu, statistic / squared.size(), 3.0);
   }
   return nu;
+}
+
+// The walk with its E-steps on the half-unit grid (walkDegreesOfFreedom) against the walk with
+// them at nu itself, from the same start: step for step within the grid's reach, to the same end,
+// and onto the floor when the tails are heavier than it allows (the rules that read the floor
+// need it reached, not held a grid step above).
+std::vector<std::pair<double, double>> walksSideBySide(double true_nu, double start_nu,
+                                                        int iterations) {
+  std::mt19937_64 generator(11);
+  std::normal_distribution<double> normal(0.0, 1.0);
+  std::vector<double> squared(50000);
+  for (double& m : squared) {
+    const double scale = std::gamma_distribution<double>(0.5 * true_nu, 2.0 / true_nu)(generator);
+    double r2 = 0.0;
+    for (int i = 0; i < 3; ++i) r2 += std::pow(normal(generator), 2);
+    m = r2 / scale;
+  }
+  const auto statistic = [&](double nu) {
+    double sum = 0.0;
+    for (double m : squared) {
+      const double u = (nu + 3.0) / (nu + m);
+      sum += std::log(u) - u;
+    }
+    return sum / squared.size();
+  };
+  std::vector<std::pair<double, double>> walks;
+  double exact = start_nu, on_grid = start_nu;
+  for (int iteration = 0; iteration < iterations; ++iteration) {
+    exact = pda_registration::updateDegreesOfFreedom(exact, statistic(exact), 3.0);
+    const double e_step_nu = pda_registration::nuOfEStep(on_grid);
+    on_grid = pda_registration::walkDegreesOfFreedom(on_grid, e_step_nu, statistic(e_step_nu), 3.0);
+    walks.emplace_back(exact, on_grid);
+  }
+  return walks;
+}
+
+TEST(DegreesOfFreedom, WalkOnTheHalfUnitGridKeepsThePace) {
+  using pda_registration::nuOfEStep;
+  EXPECT_EQ(nuOfEStep(2.24), 2.0);
+  EXPECT_EQ(nuOfEStep(2.26), 2.5);
+  EXPECT_EQ(nuOfEStep(0.3), pda_registration::kMinDegreesOfFreedom);
+  EXPECT_EQ(nuOfEStep(100.0), pda_registration::kMaxDegreesOfFreedom);
+  for (const auto& [exact, on_grid] : walksSideBySide(2.0, 5.0, 60)) {
+    EXPECT_NEAR(on_grid, exact, 0.15 * exact);
+  }
+  const auto to_floor = walksSideBySide(0.9, 5.0, 150);
+  EXPECT_EQ(to_floor.back().first, pda_registration::kMinDegreesOfFreedom);
+  EXPECT_EQ(to_floor.back().second, pda_registration::kMinDegreesOfFreedom);
 }
 
 TEST(DegreesOfFreedom, EmUpdateRecoversTheTailsOfTheData) {

@@ -19,7 +19,7 @@ constexpr size_t kMinimumSurfacePoints = 10;
 void computeCandidateWeights(const double* squared_residuals, size_t count, double nu,
                              double sigma_squared, double* posterior, double* weight,
                              double* log_precision) {
-  const CandidateWeighting weighting(nu, sigma_squared, log_precision != nullptr);
+  const CandidateWeighting weighting(nu, sigma_squared);
   weighting(squared_residuals, count, posterior, weight, log_precision);
 }
 
@@ -160,7 +160,7 @@ void computeWeightedCorrespondences(const PointList& source, const CandidateSets
   buffers->log_u_minus_u.resize(n);
   buffers->inlier.resize(n);
   const bool nu_statistic = buffers->nu_statistic && !std::isinf(nu);
-  const CandidateWeighting weighting(nu, sigma_squared, nu_statistic);
+  const CandidateWeighting weighting(nu, sigma_squared);
   const bool second_moments = buffers->second_moments;
   if (second_moments) buffers->moments.resize(n);
   using Form = CandidateWeighting::Form;
@@ -170,8 +170,13 @@ void computeWeightedCorrespondences(const PointList& source, const CandidateSets
                                                 weighting, threads, buffers);
       break;
     case Form::kIntegerPower:
-      weighSourcePoints<Form::kIntegerPower, false>(source, candidates, shapes, T_target_source,
-                                                    weighting, threads, buffers);
+      if (nu_statistic) {
+        weighSourcePoints<Form::kIntegerPower, true>(source, candidates, shapes, T_target_source,
+                                                     weighting, threads, buffers);
+      } else {
+        weighSourcePoints<Form::kIntegerPower, false>(source, candidates, shapes, T_target_source,
+                                                      weighting, threads, buffers);
+      }
       break;
     case Form::kLogarithm:
       if (nu_statistic) {

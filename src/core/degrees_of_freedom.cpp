@@ -41,4 +41,21 @@ double updateDegreesOfFreedom(double nu_old, double mean_log_u_minus_u, double d
   return std::sqrt(low * high);
 }
 
+double nuOfEStep(double nu) {
+  if (!std::isfinite(nu)) return nu;
+  return std::clamp(0.5 * std::round(2.0 * nu), kMinDegreesOfFreedom, kMaxDegreesOfFreedom);
+}
+
+double walkDegreesOfFreedom(double nu, double e_step_nu, double mean_log_u_minus_u,
+                            double dimension) {
+  const double updated = updateDegreesOfFreedom(e_step_nu, mean_log_u_minus_u, dimension);
+  if (updated <= kMinDegreesOfFreedom && e_step_nu <= kMinDegreesOfFreedom) {
+    return kMinDegreesOfFreedom;
+  }
+  if (updated >= kMaxDegreesOfFreedom && e_step_nu >= kMaxDegreesOfFreedom) {
+    return kMaxDegreesOfFreedom;
+  }
+  return std::clamp(nu + (updated - e_step_nu), kMinDegreesOfFreedom, kMaxDegreesOfFreedom);
+}
+
 }  // namespace pda_registration

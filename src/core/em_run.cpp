@@ -124,13 +124,15 @@ bool runEm(const PointList& source, const SurfaceNormalMap& normal_map, NormalLo
   // fifth fewer E-steps over the whole source on the thinned room).
   std::optional<RunExtrapolation> extrapolation;
   if (step_metric) extrapolation.emplace(*step_metric);
+  const bool nu_walks = p.nu_mode == NuMode::kEstimated;
   for (int iteration = 0; iteration < p.max_em_iterations; ++iteration) {
+    const double e_step_nu = nu_walks ? nuOfEStep(state->nu) : state->nu;
     workspace->e_step.outliers =
         state->outlier_class
-            ? outlierClassFor(state->outlier_share, state->search_radius, state->nu)
+            ? outlierClassFor(state->outlier_share, state->search_radius, e_step_nu)
             : OutlierClass();
     makeNoiseShapes(normals, workspace->spread, state->sigma_squared, p, &workspace->shapes);
-    computeWeightedCorrespondences(source, candidates, workspace->shapes, state->T, state->nu,
+    computeWeightedCorrespondences(source, candidates, workspace->shapes, state->T, e_step_nu,
                                    state->sigma_squared, p.threads, &workspace->e_step,
                                    &workspace->correspondences);
     const WeightedCorrespondences& correspondences = workspace->correspondences;
@@ -144,8 +146,9 @@ bool runEm(const PointList& source, const SurfaceNormalMap& normal_map, NormalLo
       state->sigma_squared =
           std::max(estimateSigmaSquared(correspondences, T_next), sigma_squared_floor);
     }
-    if (p.nu_mode == NuMode::kEstimated) {
-      state->nu = updateDegreesOfFreedom(state->nu, correspondences.mean_log_u_minus_u, 3.0);
+    if (nu_walks) {
+      state->nu =
+          walkDegreesOfFreedom(state->nu, e_step_nu, correspondences.mean_log_u_minus_u, 3.0);
     }
     const Increment step = incrementBetween(state->T, T_next);
     ++*em_iterations;

@@ -8,6 +8,7 @@
 #include "pda_registration/core/association_weights.hpp"
 #include "pda_registration/core/competing_shift.hpp"
 #include "pda_registration/core/degeneracy.hpp"
+#include "pda_registration/core/degrees_of_freedom.hpp"
 #include "pda_registration/core/noise_shapes.hpp"
 #include "pda_registration/core/outlier_class.hpp"
 #include "pda_registration/core/pose_covariance.hpp"
@@ -106,17 +107,20 @@ void fillFinalStatistics(const PointList& source, const TargetIndex& index,
                   &workspace->shapes);
   const NoiseShapes& shapes = workspace->shapes;
   workspace->e_step.second_moments = true;  // for the covariance's observed information
+  // The nu the refine runs' E-steps weighed with.
+  const double nu =
+      nuModeOfRun(p, /*refine_stage=*/true) == NuMode::kEstimated ? nuOfEStep(state.nu) : state.nu;
   // The statistics' candidates are searched within the full radius.
   workspace->e_step.outliers = state.outlier_class
-                                   ? outlierClassFor(state.outlier_share, p.radius, state.nu)
+                                   ? outlierClassFor(state.outlier_share, p.radius, nu)
                                    : OutlierClass();
-  computeWeightedCorrespondences(source, candidates, shapes, state.T, state.nu, state.sigma_squared,
+  computeWeightedCorrespondences(source, candidates, shapes, state.T, nu, state.sigma_squared,
                                  p.threads, &workspace->e_step, &workspace->correspondences);
   workspace->e_step.second_moments = false;
   const WeightedCorrespondences& correspondences = workspace->correspondences;
   const auto covariance_start = std::chrono::steady_clock::now();
   PoseCovarianceTerms terms;
-  computePoseCovariance(correspondences, state.T, state.sigma_squared, state.nu,
+  computePoseCovariance(correspondences, state.T, state.sigma_squared, nu,
                         &result->covariance, &terms);
   result->covariance_correlation_length = terms.cell_edge;
   result->disagreeing_halves = terms.disagreeing_cuts;
@@ -142,7 +146,7 @@ void fillFinalStatistics(const PointList& source, const TargetIndex& index,
   result->degeneracy_ratio = constraintEigenvalueRatio(moved, normals);
   if (associations) {
     *associations =
-        computeAssociations(source, candidates, shapes, state.T, state.nu, state.sigma_squared);
+        computeAssociations(source, candidates, shapes, state.T, nu, state.sigma_squared);
   }
 }
 

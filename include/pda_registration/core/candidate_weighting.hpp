@@ -13,24 +13,34 @@
 namespace pda_registration {
 namespace candidate_weighting_detail {
 
-// base^exponent for base in (0, 1] by repeated multiplication, when 2 * exponent is a small
-// integer (nu = 1, 2, 3, ... give (nu + 3) / 2 of that form): a fixed nu's common case. The form
+// base^exponent for base in (0, 1] by repeated multiplication and square roots, when 4 * exponent
+// is a small integer: nu = 1, 1.5, 2, 2.5, ... give (nu + 3) / 2 of that form (a fixed nu's common
+// case, and the half-unit grid an estimated nu is weighed on: degrees_of_freedom.hpp). The form
 // is decided once per E-step, not per candidate.
 class IntegerPower {
  public:
   explicit IntegerPower(double exponent) {
-    const double twice = 2.0 * exponent;
-    applies_ = twice > 0.0 && twice <= 64.0 && twice == std::floor(twice);
+    const double four_times = 4.0 * exponent;
+    applies_ = four_times > 0.0 && four_times <= 128.0 && four_times == std::floor(four_times);
     if (applies_) {
       whole_ = static_cast<int>(exponent);
-      half_ = (twice - 2.0 * whole_) > 0.5;
+      quarters_ = static_cast<int>(four_times) - 4 * whole_;
     }
   }
 
   bool applies() const { return applies_; }
 
   double operator()(double base) const {
-    double result = half_ ? std::sqrt(base) : 1.0;
+    double result = 1.0;
+    if (quarters_ != 0) {
+      const double root = std::sqrt(base);
+      if (quarters_ == 2) {
+        result = root;
+      } else {
+        const double fourth_root = std::sqrt(root);
+        result = quarters_ == 1 ? fourth_root : root * fourth_root;
+      }
+    }
     // Exponents up to 4.5 (nu up to 6) written out: the loop's products in the loop's order,
     // without its branch per bit (the E-step takes one power per candidate).
     switch (whole_) {
@@ -60,7 +70,7 @@ class IntegerPower {
  private:
   bool applies_ = false;
   int whole_ = 0;
-  bool half_ = false;
+  int quarters_ = 0;  // exponent - whole_, in quarters
 };
 
 // log1p and exp for the E-step's non-integer powers, x >= 0: single precision (about 1e-7 relative
@@ -83,16 +93,15 @@ class CandidateWeighting {
   /// Candidates whose density is below this fraction of the best's get posterior 0.
   static constexpr double kNegligibleDensity = 1e-16;
 
-  CandidateWeighting(double nu, double sigma_squared, bool log_precision)
+  CandidateWeighting(double nu, double sigma_squared)
       : nu_(nu),
         gaussian_(std::isinf(nu)),
         inverse_sigma_squared_(1.0 / sigma_squared),
         exponent_(0.5 * (nu + kDimension)),
         power_(exponent_),
-        // An estimated nu is not an integer: pow would cost a log and an exp per candidate, and
-        // nu's statistic another log. One log of nu + m_i serves both (the E-step's most
-        // expensive part).
-        by_logarithm_(!gaussian_ && (log_precision || !power_.applies())),
+        // Any other nu costs a log and an exp per candidate (one log serving nu's statistic too):
+        // an E-step twice as long as by products and square roots.
+        by_logarithm_(!gaussian_ && !power_.applies()),
         // Candidates whose density is below 1e-16 of the best's add nothing a double can hold to
         // the normalisation: their posterior is 0, without a log or an exp.
         negligible_ratio_(by_logarithm_ ? std::exp(-std::log(kNegligibleDensity) / exponent_) - 1.0
@@ -120,8 +129,10 @@ class CandidateWeighting {
         return unnormalisedAs<Form::kGaussian, false>(squared_residuals, count, posterior, weight,
                                                       nullptr);
       case Form::kIntegerPower:
-        return unnormalisedAs<Form::kIntegerPower, false>(squared_residuals, count, posterior,
-                                                          weight, nullptr);
+        return log_precision ? unnormalisedAs<Form::kIntegerPower, true>(
+                                   squared_residuals, count, posterior, weight, log_precision)
+                             : unnormalisedAs<Form::kIntegerPower, false>(
+                                   squared_residuals, count, posterior, weight, nullptr);
       case Form::kLogarithm:
         break;
     }
@@ -136,7 +147,7 @@ class CandidateWeighting {
   template <Form kForm, bool kLogPrecision>
   double unnormalisedAs(const double* squared_residuals, size_t count, double* posterior,
                         double* weight, double* log_precision) const {
-    static_assert(!kLogPrecision || kForm == Form::kLogarithm, "nu's statistic needs the log");
+    static_assert(!kLogPrecision || kForm != Form::kGaussian, "nu's statistic is the t's");
     if (count == 0) return 0.0;
     const double nu = nu_;
     // weight[] holds the Mahalanobis distances until the last loop. Divisions are taken once per
@@ -175,6 +186,7 @@ class CandidateWeighting {
         const double inverse = 1.0 / (nu + mahalanobis);
         posterior[i] = power_((nu + best) * inverse);  // eq. 20
         weight[i] = (nu + kDimension) * inverse;       // expected precision, eq. 16
+        if constexpr (kLogPrecision) log_precision[i] = std::log(static_cast<float>(weight[i]));
       }
       total += posterior[i];
     }
