@@ -82,11 +82,11 @@ TEST(AssociationWeights, NonIntegerNuMatchesTheDoublePrecisionFormula) {
   }
 }
 
-// The half-unit grid an estimated nu is weighed on (degrees_of_freedom.hpp): (nu + 3) / 2 a
-// multiple of 1/4, its power by products and square roots, nu's statistic by one log a candidate.
-TEST(AssociationWeights, HalfUnitNuMatchesTheDoublePrecisionFormula) {
+// The quarter-unit grid an estimated nu is weighed on (degrees_of_freedom.hpp): (nu + 3) / 2 a
+// multiple of 1/8, its power by products and square roots, nu's statistic by one log a candidate.
+TEST(AssociationWeights, QuarterUnitNuMatchesTheDoublePrecisionFormula) {
   const double residuals[5] = {0.02, 0.5, 3.0, 40.0, 1e9};
-  for (const double nu : {1.0, 1.5, 2.0, 2.5, 3.5, 12.5, 60.0}) {
+  for (const double nu : {1.0, 1.25, 1.5, 1.75, 2.0, 2.25, 3.5, 12.75, 60.0}) {
     double posterior[5], weight[5], log_precision[5];
     computeCandidateWeights(residuals, 5, nu, 0.7, posterior, weight, log_precision);
     double density[5], total = 0.0;
@@ -260,7 +260,7 @@ double estimatedNu(double true_nu, double start_nu) {
   return nu;
 }
 
-// The walk with its E-steps on the half-unit grid (walkDegreesOfFreedom) against the walk with
+// The walk with its E-steps on the quarter-unit grid (walkDegreesOfFreedom) against the walk with
 // them at nu itself, from the same start: step for step within the grid's reach, to the same end,
 // and onto the floor when the tails are heavier than it allows (the rules that read the floor
 // need it reached, not held a grid step above).
@@ -294,14 +294,14 @@ std::vector<std::pair<double, double>> walksSideBySide(double true_nu, double st
   return walks;
 }
 
-TEST(DegreesOfFreedom, WalkOnTheHalfUnitGridKeepsThePace) {
+TEST(DegreesOfFreedom, WalkOnTheQuarterUnitGridKeepsThePace) {
   using pda_registration::nuOfEStep;
-  EXPECT_EQ(nuOfEStep(2.24), 2.0);
-  EXPECT_EQ(nuOfEStep(2.26), 2.5);
+  EXPECT_EQ(nuOfEStep(2.12), 2.0);
+  EXPECT_EQ(nuOfEStep(2.13), 2.25);
   EXPECT_EQ(nuOfEStep(0.3), pda_registration::kMinDegreesOfFreedom);
   EXPECT_EQ(nuOfEStep(100.0), pda_registration::kMaxDegreesOfFreedom);
   for (const auto& [exact, on_grid] : walksSideBySide(2.0, 5.0, 60)) {
-    EXPECT_NEAR(on_grid, exact, 0.15 * exact);
+    EXPECT_NEAR(on_grid, exact, 0.1 * exact);
   }
   const auto to_floor = walksSideBySide(0.9, 5.0, 150);
   EXPECT_EQ(to_floor.back().first, pda_registration::kMinDegreesOfFreedom);

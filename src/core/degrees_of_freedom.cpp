@@ -43,7 +43,7 @@ double updateDegreesOfFreedom(double nu_old, double mean_log_u_minus_u, double d
 
 double nuOfEStep(double nu) {
   if (!std::isfinite(nu)) return nu;
-  return std::clamp(0.5 * std::round(2.0 * nu), kMinDegreesOfFreedom, kMaxDegreesOfFreedom);
+  return std::clamp(0.25 * std::round(4.0 * nu), kMinDegreesOfFreedom, kMaxDegreesOfFreedom);
 }
 
 double walkDegreesOfFreedom(double nu, double e_step_nu, double mean_log_u_minus_u,

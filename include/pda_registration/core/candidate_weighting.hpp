@@ -13,32 +13,36 @@
 namespace pda_registration {
 namespace candidate_weighting_detail {
 
-// base^exponent for base in (0, 1] by repeated multiplication and square roots, when 4 * exponent
-// is a small integer: nu = 1, 1.5, 2, 2.5, ... give (nu + 3) / 2 of that form (a fixed nu's common
-// case, and the half-unit grid an estimated nu is weighed on: degrees_of_freedom.hpp). The form
-// is decided once per E-step, not per candidate.
+// base^exponent for base in (0, 1] by repeated multiplication and square roots, when 8 * exponent
+// is a small integer: nu = 1, 1.25, 1.5, ... give (nu + 3) / 2 of that form (a fixed nu's common
+// case, and the quarter-unit grid an estimated nu is weighed on: degrees_of_freedom.hpp). The
+// form is decided once per E-step, not per candidate.
 class IntegerPower {
  public:
   explicit IntegerPower(double exponent) {
-    const double four_times = 4.0 * exponent;
-    applies_ = four_times > 0.0 && four_times <= 128.0 && four_times == std::floor(four_times);
+    const double eighths = 8.0 * exponent;
+    applies_ = eighths > 0.0 && eighths <= 256.0 && eighths == std::floor(eighths);
     if (applies_) {
       whole_ = static_cast<int>(exponent);
-      quarters_ = static_cast<int>(four_times) - 4 * whole_;
+      eighths_ = static_cast<int>(eighths) - 8 * whole_;
     }
   }
 
   bool applies() const { return applies_; }
 
   double operator()(double base) const {
+    // The fraction in eighths: the square root for a half, its root for a quarter, that one's
+    // root for an eighth (the common half alone as before: one root).
     double result = 1.0;
-    if (quarters_ != 0) {
+    if (eighths_ != 0) {
       const double root = std::sqrt(base);
-      if (quarters_ == 2) {
+      if (eighths_ == 4) {
         result = root;
       } else {
         const double fourth_root = std::sqrt(root);
-        result = quarters_ == 1 ? fourth_root : root * fourth_root;
+        result = (eighths_ & 4) ? root : 1.0;
+        if (eighths_ & 2) result *= fourth_root;
+        if (eighths_ & 1) result *= std::sqrt(fourth_root);
       }
     }
     // Exponents up to 4.5 (nu up to 6) written out: the loop's products in the loop's order,
@@ -70,7 +74,7 @@ class IntegerPower {
  private:
   bool applies_ = false;
   int whole_ = 0;
-  int quarters_ = 0;  // exponent - whole_, in quarters
+  int eighths_ = 0;  // exponent - whole_, in eighths
 };
 
 // log1p and exp for the E-step's non-integer powers, x >= 0: single precision (about 1e-7 relative
