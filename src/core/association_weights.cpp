@@ -141,6 +141,20 @@ void weighSourcePoints(const PointList& source, const CandidateSets& candidates,
   }
 }
 
+// A t form's pass, with or without nu's statistic (the Gaussian has none).
+template <CandidateWeighting::Form kForm>
+void weighWithTheT(bool nu_statistic, const PointList& source, const CandidateSets& candidates,
+                   const NoiseShapes& shapes, const Eigen::Isometry3d& T_target_source,
+                   const CandidateWeighting& weighting, int threads, EStepBuffers* buffers) {
+  if (nu_statistic) {
+    weighSourcePoints<kForm, true>(source, candidates, shapes, T_target_source, weighting,
+                                   threads, buffers);
+  } else {
+    weighSourcePoints<kForm, false>(source, candidates, shapes, T_target_source, weighting,
+                                    threads, buffers);
+  }
+}
+
 }  // namespace
 
 void computeWeightedCorrespondences(const PointList& source, const CandidateSets& candidates,
@@ -170,22 +184,12 @@ void computeWeightedCorrespondences(const PointList& source, const CandidateSets
                                                 weighting, threads, buffers);
       break;
     case Form::kIntegerPower:
-      if (nu_statistic) {
-        weighSourcePoints<Form::kIntegerPower, true>(source, candidates, shapes, T_target_source,
-                                                     weighting, threads, buffers);
-      } else {
-        weighSourcePoints<Form::kIntegerPower, false>(source, candidates, shapes, T_target_source,
-                                                      weighting, threads, buffers);
-      }
+      weighWithTheT<Form::kIntegerPower>(nu_statistic, source, candidates, shapes,
+                                         T_target_source, weighting, threads, buffers);
       break;
     case Form::kLogarithm:
-      if (nu_statistic) {
-        weighSourcePoints<Form::kLogarithm, true>(source, candidates, shapes, T_target_source,
-                                                  weighting, threads, buffers);
-      } else {
-        weighSourcePoints<Form::kLogarithm, false>(source, candidates, shapes, T_target_source,
-                                                   weighting, threads, buffers);
-      }
+      weighWithTheT<Form::kLogarithm>(nu_statistic, source, candidates, shapes, T_target_source,
+                                      weighting, threads, buffers);
       break;
   }
 
