@@ -29,8 +29,8 @@ bool nuEstimatedAtFloor(const RegistrationParameters& p, double nu);
 double digamma(double x);
 
 /// One ECM update of nu, in [kMinDegreesOfFreedom, kMaxDegreesOfFreedom]. (Not rounded: ECM's
-/// steps shrink near the optimum, and rounding them stalls it short of it; a non-integer nu costs
-/// the E-step a log and an exp per candidate.) `mean_log_u_minus_u` is
+/// steps shrink near the optimum, and rounding them stalls it short of it; the E-steps weigh on a
+/// grid instead, nuOfEStep, while nu itself walks, walkDegreesOfFreedom.) `mean_log_u_minus_u` is
 /// mean_j sum_i P(a_i)(log u_i - u_i) from the E-step run with nu_old; `dimension` is d (3).
 /// Returns nu_old when the statistic is not finite.
 double updateDegreesOfFreedom(double nu_old, double mean_log_u_minus_u, double dimension);
